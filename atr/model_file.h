@@ -1,0 +1,59 @@
+#pragma once
+// The classifier's model file (.slpca): a versioned little-endian binary format.
+//
+// Version 1 layout (all integers unsigned little-endian, floats IEEE 754 little-endian):
+//
+//   header, 36 bytes
+//     0   u8[5]  magic "SLPCA"
+//     5   u8     0 (reserved)
+//     6   u16    format version (1)
+//     8   u32    chip width (pixels)
+//    12   u32    chip height (pixels)                      n = width * height
+//    16   u32    p, the requested subspace dimension
+//    20   u32    aspect sectors N
+//    24   u32    class count C (>= 1)
+//    28   u32    group count G (0, or 2: "mine" then "non_mine", Section 4.1.2)
+//    32   u32    0 (reserved)
+//   C class records, then G group records, each:
+//     u16    name length L (1 to 255), then L bytes of name (UTF-8, no terminator)
+//     u8     mine_like (0 or 1)
+//     u8     0 (reserved)
+//     u32    subspace count S (>= 1)
+//     S subspace records:
+//       f64      aspect_min_deg, f64 aspect_max_deg   the sector [min, max), within [0, 360]
+//       u32      train_count k (>= 1)
+//       u32      rank r (<= p, <= k - 1)
+//       f64[r]   Gram eigenvalues, descending
+//       f32[n]   mean image mu, row-major pixel order (eq. 8)
+//       f32[r*n] basis U, column by column: the n values of eigenvector 0, then 1, ...
+//   trailer
+//     u32    CRC-32 (IEEE 802.3 polynomial, as zlib's crc32) of every preceding byte
+//
+// A 64 x 64 model with 4 classes, one subspace each and p = 20 takes 4 * 21 * 4096 * 4 B = 1.4 MB.
+// Loading checks everything: magic, version, sizes and counts against sane limits, the checksum,
+// truncation, trailing bytes, then validate_model() (finite values, orthonormal bases, ranks).
+// Errors are std::runtime_error naming the file, the byte offset and what was expected.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "atr/subspace_classifier.h"
+
+namespace sonarloop::atr {
+
+inline constexpr std::uint16_t kModelFileVersion = 1;
+inline constexpr char kModelFileMagic[5] = {'S', 'L', 'P', 'C', 'A'};
+
+// The file's bytes for a (valid) model. Throws std::runtime_error if validate_model() fails.
+std::vector<std::uint8_t> encode_model(const Model& m);
+// Parses a model from bytes; `name` (a file name) prefixes error messages.
+Model decode_model(std::span<const std::uint8_t> bytes, const std::string& name = "model");
+
+void save_model(const Model& m, const std::string& path);
+Model load_model(const std::string& path);
+
+// CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320, initial and final XOR 0xFFFFFFFF).
+std::uint32_t crc32(std::span<const std::uint8_t> bytes);
+
+}  // namespace sonarloop::atr

@@ -1,0 +1,201 @@
+#pragma once
+// The PCA (eigen-subspace) classifier of Pailhas, Petillot & Capus, "High-Resolution Sonars: What
+// Resolution Do We Need for Target Recognition?", EURASIP J. Adv. Signal Process. 2010,
+// Section 3.2 (identification) and Section 4.1.2 (mine / non-mine), with the remedy the paper
+// proposes for aspect dependence (several subspaces per target, each for a range of aspects).
+//
+// Our reading of the method (the paper's equations are not reproduced here; this is the
+// standard per-class eigen-subspace method that Section 3.2 describes):
+//
+//   Chips as vectors. A chip of n x m pixels is a vector x in R^(n*m) (row-major).
+//   Eq. 9 (normalisation). Every chip, training or test, is centred on its own mean and divided
+//     by its own standard deviation, taken over its pixels: x~ = (x - mean(x)) / std(x)
+//     (atr/chip.h). This removes gain and offset.
+//   Eq. 8 (mean image). For target class c with k training chips, mu_c = (1/k) sum_i x~_i.
+//   Subspace. With A = [x~_1 - mu_c, ..., x~_k - mu_c] (n*m x k), the principal directions are
+//     the leading eigenvectors of the covariance A A^T ((n*m)^2 entries: 16.7 M for 64 x 64
+//     chips). They are found instead from the k x k Gram matrix G = A^T A: if G v = lambda v
+//     then A A^T (A v) = lambda (A v), and u = A v / sqrt(lambda) is a unit eigenvector of A A^T
+//     with the same eigenvalue. U_c holds the p = 20 leading u (orthonormal columns). A is
+//     centred, so its rank is at most k - 1: a class with k <= p chips keeps rank k - 1 (or
+//     fewer, when chips repeat), recorded as Subspace::rank(). Eigenvalues below
+//     kRelativeEigenvalueFloor of the largest are dropped (their directions are rounding noise).
+//   Eq. 10 (distance). A test chip y, normalised to y~, is compared with each class by the norm
+//     of what its projection on the class subspace leaves out:
+//        d_c(y) = | (y~ - mu_c) - U_c U_c^T (y~ - mu_c) |
+//     and is identified as the class of smallest distance. Distances are in normalised units:
+//     |y~| = sqrt(n) for every chip, so a chip unrelated to a class lies about sqrt(n) or more
+//     from it (64 for 64 x 64 chips) and a chip the class explains well lies near 0.
+//
+// Multi-aspect subspaces (the paper's proposed remedy for aspect dependence). With
+// aspect_sectors = N > 1, a class holds up to N subspaces, one per aspect sector
+// [s * 360/N, (s + 1) * 360/N) deg, each trained only on the chips whose target aspect angle
+// falls in it (training then needs every chip's aspect; sectors without chips are left out). The
+// class distance is the smallest distance over its subspaces; the nearest subspace also tells
+// the likely aspect range.
+//
+// Mine / non-mine (Section 4.1.2). Each class carries a mine_like flag (by default from
+// sim/targets/target_type.h: Manta, Rockan, cylinder and cuboid are mine-like; names not in that
+// table are non-mine unless TrainOptions::mine_classes says otherwise). On top of
+// identification the classifier reports a group score for each group, the smallest class
+// distance within it; the decision is the group of smaller score, which is the group of the
+// identified class. Optionally (TrainOptions::group_subspaces) the model also holds dedicated
+// "mine" and "non_mine" subspaces, trained on all the chips of each group pooled (with the same
+// aspect sectors); the group scores and the decision then come from those, and the group of the
+// identified class is still reported as mine_like_by_identity.
+//
+// Onboard use: Classifier sizes its work vectors once; classify() does not allocate. Degenerate
+// chips (wrong size, non-finite pixel, constant) are rejected with a ChipCheck that says why;
+// they never produce NaN scores. Training cost per subspace: O(k^2 n) to form G, O(k^3) for its
+// eigen-decomposition, O(k n p) for U; classification costs about 4 n p flops per subspace.
+#include <Eigen/Dense>
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "atr/chip.h"
+
+namespace sonarloop::atr {
+
+// p, the number of leading eigenvectors kept per subspace (Section 3.2).
+inline constexpr int kDefaultSubspaceDim = 20;
+// Gram eigenvalues below this fraction of the largest are dropped: chips are float
+// (relative rounding 6e-8), so a direction whose eigenvalue (a squared singular value) is
+// 1e-10 of the largest, i.e. whose singular value is 1e-5 of the largest, is rounding noise.
+inline constexpr double kRelativeEigenvalueFloor = 1e-10;
+// Names of the dedicated group subspaces (Model::groups).
+inline constexpr std::string_view kMineGroupName = "mine";
+inline constexpr std::string_view kNonMineGroupName = "non_mine";
+
+// One eigen-subspace: a mean image and an orthonormal basis.
+struct Subspace {
+  // The aspect sector of its training chips [min, max) in degrees; [0, 360) for all aspects.
+  double aspect_min_deg = 0.0;
+  double aspect_max_deg = 360.0;
+  int train_count = 0;          // k, the chips it was trained on
+  Eigen::VectorXf mean;         // mu (n): the mean normalised chip, eq. 8
+  Eigen::MatrixXf basis;        // U (n x rank): orthonormal columns, leading eigenvectors first
+  Eigen::VectorXd eigenvalues;  // (rank) Gram eigenvalues, descending (squared singular values)
+
+  int rank() const { return static_cast<int>(basis.cols()); }
+};
+
+// One target class (or one mine / non-mine group).
+struct ClassModel {
+  std::string name;
+  bool mine_like = false;
+  std::vector<Subspace> subspaces;  // one per aspect sector that had training chips
+};
+
+// A trained model: plain data, saved and loaded by atr/model_file.h.
+struct Model {
+  int chip_width = 0;           // pixels
+  int chip_height = 0;          // pixels
+  int p = kDefaultSubspaceDim;  // requested subspace dimension (a subspace may hold fewer)
+  int aspect_sectors = 1;
+  std::vector<ClassModel> classes;  // identification classes, in training order (sorted names)
+  std::vector<ClassModel> groups;   // empty, or {"mine", "non_mine"} (Section 4.1.2)
+
+  std::size_t pixel_count() const {
+    return static_cast<std::size_t>(chip_width) * static_cast<std::size_t>(chip_height);
+  }
+  // Index of the class called `name`, or -1.
+  int find_class(std::string_view name) const;
+};
+
+// Throws std::runtime_error naming the first inconsistency: sizes, counts, ranks, non-finite
+// values, a basis that is not orthonormal (to 1e-3), duplicate or empty names, bad groups.
+void validate_model(const Model& m);
+
+// Whether a class name is mine-like by default: the mine_like flag of the sim/targets type of
+// that key ("manta", "rockan", "cylinder", "cuboid"); false for names not in that table.
+bool default_mine_like(std::string_view class_name);
+
+// The aspect sector (0 .. sectors-1) of an aspect angle: [s * 360/N, (s + 1) * 360/N) after
+// wrapping the angle to [0, 360).
+int aspect_sector(double aspect_deg, int sectors);
+
+// Eq. 8 and the Gram-matrix eigen-decomposition for one subspace. `x` holds k >= 1 normalised
+// chips as columns (n x k). Keeps at most p directions (and at most the rank of the centred data).
+// Computed in double; stored in float.
+Subspace fit_subspace(const Eigen::MatrixXd& x, int p);
+
+// Eq. 10: | r - U U^T r | with r = x - mu, for a normalised chip x (n). work_n (n) receives the
+// residual vector r - U U^T r; work_p must hold at least rank() values. Allocation-free.
+float subspace_residual(const Subspace& s, const Eigen::Ref<const Eigen::VectorXf>& x,
+                        Eigen::Ref<Eigen::VectorXf> work_n, Eigen::Ref<Eigen::VectorXf> work_p);
+
+struct TrainOptions {
+  int p = kDefaultSubspaceDim;   // leading eigenvectors per subspace, >= 1
+  int aspect_sectors = 1;        // N >= 1; N > 1 needs every chip's aspect_deg
+  bool group_subspaces = false;  // also train pooled "mine" / "non_mine" subspaces
+  // Class names that are mine-like; when unset, default_mine_like() decides. Every name listed
+  // must be a class of the training set.
+  std::optional<std::vector<std::string>> mine_classes;
+  // Degenerate chips (constant, non-finite, wrong size): skipped and listed in the report when
+  // true, an error naming the chip when false.
+  bool skip_degenerate = false;
+};
+
+struct TrainReport {
+  struct Skipped {
+    std::string source;
+    std::string reason;
+  };
+  std::vector<Skipped> skipped;
+};
+
+// Trains one class per distinct label (sorted by name) from labelled chips, which must all have
+// the same size. Throws std::runtime_error naming the chip or option at fault.
+Model train_model(std::span<const LabelledChip> chips, const TrainOptions& options = {},
+                  TrainReport* report = nullptr);
+
+// The outcome of classifying one chip.
+struct Classification {
+  int class_index = -1;             // the identified class (index into Model::classes), -1 if none
+  float distance = 0.0f;            // its eq. 10 distance
+  int subspace_index = -1;          // its nearest subspace (aspect sector)
+  int runner_up = -1;               // the second-nearest class, -1 when the model has one class
+  float runner_up_distance = 0.0f;  // +infinity when there is no runner-up
+  std::vector<float> class_distance;  // (classes) distance to each class: min over its subspaces
+  std::vector<int> class_subspace;    // (classes) index of that nearest subspace
+  // Mine / non-mine (Section 4.1.2).
+  bool mine_like = false;              // the decision
+  bool mine_like_by_identity = false;  // the identified class's mine_like flag
+  bool by_group_subspaces = false;     // scores come from the model's dedicated group subspaces
+  float mine_distance = 0.0f;          // group scores; +infinity for a group without any class
+  float non_mine_distance = 0.0f;
+};
+
+// Classifies chips with a fixed model. Not thread-safe (one per thread); classify() does not
+// allocate.
+class Classifier {
+ public:
+  // Validates the model (throws std::runtime_error) and sizes the work vectors.
+  explicit Classifier(Model model);
+
+  const Model& model() const { return model_; }
+
+  // Checks the chip (model size, finite, not constant), normalises it (eq. 9) and scores it
+  // against every subspace (eq. 10). On success result() holds the answer; on failure the
+  // returned check says why and result().class_index is -1. Allocation-free.
+  ChipCheck classify(ChipView chip);
+  const Classification& result() const { return result_; }
+
+  // The normalised chip of the last classify() call (n), for inspection.
+  const Eigen::VectorXf& normalised() const { return x_; }
+
+ private:
+  float class_distance(const ClassModel& c, int* best_subspace);
+
+  Model model_;
+  Eigen::VectorXf x_;       // normalised chip (n)
+  Eigen::VectorXf work_n_;  // residual (n)
+  Eigen::VectorXf work_p_;  // projection coefficients (max rank)
+  Classification result_;
+};
+
+}  // namespace sonarloop::atr

@@ -1,0 +1,24 @@
+# sonarloop_add_test(SOURCE LIBS...): one Catch2 executable per test file, named after its path
+# below tests/ (tests/sim/seabed/fractal_test.cpp -> test_sim_seabed_fractal), registered with CTest.
+function(sonarloop_add_test source)
+  if(SONARLOOP_ALLOW_MISSING_TESTS AND NOT EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/${source})
+    message(WARNING "skipping missing test source ${source} (SONARLOOP_ALLOW_MISSING_TESTS)")
+    return()
+  endif()
+  file(RELATIVE_PATH rel ${PROJECT_SOURCE_DIR}/tests ${CMAKE_CURRENT_SOURCE_DIR}/${source})
+  string(REGEX REPLACE "_test\\.cpp$" "" stem ${rel})
+  string(REPLACE "/" "_" stem ${stem})
+  set(name test_${stem})
+  add_executable(${name} ${source})
+  target_link_libraries(${name} PRIVATE sonarloop_catch_main ${ARGN})
+  target_compile_definitions(${name} PRIVATE
+    SONARLOOP_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    SONARLOOP_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared"
+    SONARLOOP_BINARY_DIR="${PROJECT_BINARY_DIR}"
+    SONARLOOP_PYTHON="/usr/bin/python3")
+  sonarloop_target_defaults(${name})
+  # test code does a lot of intentional int/double arithmetic
+  target_compile_options(${name} PRIVATE -Wno-conversion)
+  add_test(NAME ${name} COMMAND ${name} WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+  set_tests_properties(${name} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
+endfunction()

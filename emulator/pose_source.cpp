@@ -1,0 +1,406 @@
+#include "emulator/pose_source.h"
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string_view>
+#include <utility>
+#include <variant>
+
+#include "drivers/can/socketcan.h"
+#include "drivers/can/socketcand_client.h"
+#include "drivers/n2k/messages.h"
+#include "emulator/pose_message.h"
+
+namespace sonarloop::emulator {
+namespace {
+
+// A UDP pose message whose sequence number is at most this far behind the last one is a late
+// (reordered or duplicated) datagram and is dropped; further behind, the sender has restarted
+// its counter and the message is taken.
+constexpr std::int32_t kSequenceReorderWindow = 64;
+
+// Receive buffer for UDP datagrams: larger than a pose message, so that a longer datagram is seen
+// (and counted) as the wrong size instead of being truncated to a plausible one.
+constexpr std::size_t kUdpBufferBytes = 2048;
+
+void default_warning(const std::string& text) {
+  std::fprintf(stderr, "warning: %s\n", text.c_str());
+}
+
+double wrap_two_pi(double a) {
+  const double r = std::fmod(a, 2.0 * std::numbers::pi);
+  return r < 0.0 ? r + 2.0 * std::numbers::pi : r;
+}
+
+}  // namespace
+
+PoseSource::~PoseSource() = default;
+
+// ---- PoseMerger ----
+
+PoseMerger::PoseMerger(const LocalTangentPlane& ltp, std::function<std::int64_t()> now_ns)
+    : ltp_(ltp), now_ns_(std::move(now_ns)) {
+  if (!now_ns_) throw std::invalid_argument("pose source: now_ns function is empty");
+}
+
+void PoseMerger::count_malformed_locked(std::string what) {
+  ++stats_.malformed;
+  stats_.last_error = std::move(what);
+}
+
+void PoseMerger::count_malformed(const std::string& what) {
+  std::lock_guard lock(mu_);
+  count_malformed_locked(what);
+}
+
+bool PoseMerger::merge_n2k(const can::CanFrame& frame) {
+  const n2k::Decoded<n2k::N2kMessage> decoded = n2k::decode_any(frame);
+  if (!decoded) {
+    std::lock_guard lock(mu_);
+    if (decoded.error() == n2k::DecodeError::kUnsupportedPgn) {
+      ++stats_.ignored;  // some other PGN on the bus
+    } else {
+      char id[16];
+      std::snprintf(id, sizeof id, "%08X", frame.id);
+      count_malformed_locked(std::string("CAN frame ") + id + ": " +
+                             n2k::to_string(decoded.error()));
+    }
+    return false;
+  }
+  const n2k::N2kMessage& message = *decoded;
+  // what the frame says, checked before the time is taken and the lock held
+  if (const auto* m = std::get_if<n2k::PositionRapidUpdate>(&message)) {
+    if (!m->latitude_deg || !m->longitude_deg) {
+      std::lock_guard lock(mu_);
+      count_malformed_locked("129025 Position without latitude or longitude");
+      return false;
+    }
+    const Vec2 ne = ltp_.to_local(GeoPoint{*m->latitude_deg, *m->longitude_deg});
+    const std::int64_t t = now_ns_();
+    std::lock_guard lock(mu_);
+    pose_.pose.position_W.x() = ne.x();
+    pose_.pose.position_W.y() = ne.y();
+    pose_.has_position = true;
+    pose_.received_ns = t;
+    any_ = true;
+    ++stats_.updates;
+    return true;
+  }
+  if (const auto* m = std::get_if<n2k::VesselHeading>(&message)) {
+    // True (and Null: reference not stated) headings are taken as they are; a magnetic one is
+    // corrected with whatever deviation and variation the frame carries
+    const bool usable = m->heading_rad && m->reference != n2k::DirectionReference::kError;
+    if (!usable) {
+      std::lock_guard lock(mu_);
+      count_malformed_locked("127250 Heading not available or reference 'error'");
+      return false;
+    }
+    double yaw = *m->heading_rad;
+    if (m->reference == n2k::DirectionReference::kMagnetic)
+      yaw += m->deviation_rad.value_or(0.0) + m->variation_rad.value_or(0.0);
+    const std::int64_t t = now_ns_();
+    std::lock_guard lock(mu_);
+    pose_.pose.yaw = wrap_two_pi(yaw);
+    pose_.has_heading = true;
+    pose_.received_ns = t;
+    any_ = true;
+    ++stats_.updates;
+    return true;
+  }
+  if (const auto* m = std::get_if<n2k::Attitude>(&message)) {
+    if (!m->pitch_rad || !m->roll_rad) {
+      std::lock_guard lock(mu_);
+      count_malformed_locked("127257 Attitude without pitch or roll");
+      return false;
+    }
+    const std::int64_t t = now_ns_();
+    std::lock_guard lock(mu_);
+    pose_.pose.pitch = *m->pitch_rad;
+    pose_.pose.roll = *m->roll_rad;
+    pose_.has_attitude = true;
+    pose_.received_ns = t;
+    any_ = true;
+    ++stats_.updates;
+    return true;
+  }
+  if (const auto* m = std::get_if<n2k::WaterDepth>(&message)) {
+    // Depth below the transducer = altitude; Offset >= 0 (transducer to surface) = depth, as
+    // emulator/nav_frames.cpp publishes it (a negative Offset is transducer to keel: no depth)
+    const std::int64_t t = now_ns_();
+    std::lock_guard lock(mu_);
+    pose_.altitude_m = m->depth_m.value_or(std::numeric_limits<double>::quiet_NaN());
+    // 128267 is the only PGN with a depth: without a usable Offset the depth is unknown now (a
+    // vehicle below the field's 32.764 m must not keep its last shallower depth)
+    pose_.has_depth = m->offset_m && *m->offset_m >= 0.0;
+    if (pose_.has_depth) pose_.pose.position_W.z() = *m->offset_m;
+    pose_.received_ns = t;
+    any_ = true;
+    ++stats_.updates;
+    return true;
+  }
+  std::lock_guard lock(mu_);
+  ++stats_.ignored;  // a navigation PGN without pose content (COG/SOG, rate of turn, ...)
+  return false;
+}
+
+bool PoseMerger::merge_pose_datagram(std::span<const std::uint8_t> datagram) {
+  std::string error;
+  const std::optional<PoseMessage> m = decode_pose_message(datagram, error);
+  if (!m) {
+    std::lock_guard lock(mu_);
+    count_malformed_locked(std::move(error));
+    return false;
+  }
+  ExternalPose p;
+  p.has_position = !std::isnan(m->latitude_deg);
+  if (p.has_position) {
+    const Vec2 ne = ltp_.to_local(GeoPoint{m->latitude_deg, m->longitude_deg});
+    p.pose.position_W.x() = ne.x();
+    p.pose.position_W.y() = ne.y();
+  }
+  p.has_depth = !std::isnan(m->depth_m);
+  if (p.has_depth) p.pose.position_W.z() = m->depth_m;
+  p.altitude_m = m->altitude_m;
+  p.has_heading = !std::isnan(m->heading_rad);
+  if (p.has_heading) p.pose.yaw = wrap_two_pi(m->heading_rad);
+  p.has_attitude = !std::isnan(m->pitch_rad) && !std::isnan(m->roll_rad);
+  if (p.has_attitude) {
+    p.pose.pitch = m->pitch_rad;
+    p.pose.roll = m->roll_rad;
+  }
+  const std::int64_t t = now_ns_();
+  std::lock_guard lock(mu_);
+  if (have_sequence_) {
+    // serial-number arithmetic: the signed distance from the last accepted message
+    const auto d = static_cast<std::int32_t>(m->sequence - last_sequence_);
+    if (d <= 0 && d >= -kSequenceReorderWindow) {
+      ++stats_.out_of_order;
+      return false;
+    }
+    if (d > 1) stats_.lost += static_cast<std::uint64_t>(d - 1);
+  }
+  have_sequence_ = true;
+  last_sequence_ = m->sequence;
+  p.received_ns = t;
+  pose_ = p;
+  any_ = true;
+  ++stats_.updates;
+  return true;
+}
+
+void PoseMerger::count_receive_error(const std::string& what) {
+  std::lock_guard lock(mu_);
+  ++stats_.receive_errors;
+  stats_.last_error = what;
+}
+
+void PoseMerger::count_reconnect() {
+  std::lock_guard lock(mu_);
+  ++stats_.reconnects;
+}
+
+std::optional<ExternalPose> PoseMerger::latest() const {
+  std::lock_guard lock(mu_);
+  if (!any_) return std::nullopt;
+  return pose_;
+}
+
+PoseSourceStats PoseMerger::stats() const {
+  std::lock_guard lock(mu_);
+  return stats_;
+}
+
+namespace {
+
+std::string counters(const PoseSourceStats& s) {
+  std::string text = std::to_string(s.updates) + " updates, " + std::to_string(s.malformed) +
+                     " malformed, " + std::to_string(s.ignored) + " ignored";
+  if (s.lost) text += ", " + std::to_string(s.lost) + " lost";
+  if (s.out_of_order) text += ", " + std::to_string(s.out_of_order) + " out of order";
+  if (s.receive_errors) text += ", " + std::to_string(s.receive_errors) + " receive errors";
+  return text;
+}
+
+}  // namespace
+
+// ---- CanPoseSource ----
+
+CanPoseSource::CanPoseSource(std::string name, Connect connect, const LocalTangentPlane& ltp,
+                             std::function<std::int64_t()> now_ns, PoseSourceOptions options)
+    : name_(std::move(name)),
+      connect_(std::move(connect)),
+      options_(std::move(options)),
+      merger_(ltp, std::move(now_ns)) {
+  if (!options_.on_warning) options_.on_warning = default_warning;
+  transport_ = connect_();
+  if (!transport_ || !transport_->can_receive())
+    throw std::invalid_argument(name_ + ": the transport cannot receive frames");
+  connected_ = true;
+  thread_ = std::thread([this] { run(); });
+}
+
+CanPoseSource::~CanPoseSource() {
+  {
+    std::lock_guard lock(stop_mu_);
+    stopping_ = true;
+  }
+  stop_cv_.notify_all();
+  if (thread_.joinable()) thread_.join();
+}
+
+bool CanPoseSource::wait_stop(int ms) {
+  std::unique_lock lock(stop_mu_);
+  return stop_cv_.wait_for(lock, std::chrono::milliseconds(ms), [this] { return stopping_; });
+}
+
+void CanPoseSource::run() {
+  bool reported_retry_failure = false;
+  for (;;) {
+    {
+      std::lock_guard lock(stop_mu_);
+      if (stopping_) return;
+    }
+    if (!transport_) {
+      // the connection was lost: try again every reconnect_interval_ms until stopped
+      if (wait_stop(options_.reconnect_interval_ms)) return;
+      try {
+        transport_ = connect_();
+        connected_ = true;
+        reported_retry_failure = false;
+        merger_.count_reconnect();
+        options_.on_warning(name_ + ": reconnected");
+      } catch (const std::exception& e) {
+        if (!reported_retry_failure) {
+          options_.on_warning(name_ + ": reconnecting failed (retrying every " +
+                              std::to_string(options_.reconnect_interval_ms) + " ms): " + e.what());
+          reported_retry_failure = true;
+        }
+      }
+      continue;
+    }
+    try {
+      const std::optional<can::CanFrame> frame = transport_->receive(options_.receive_timeout_ms);
+      if (frame) merger_.merge_n2k(*frame);
+    } catch (const std::exception& e) {
+      merger_.count_receive_error(e.what());
+      options_.on_warning(name_ +
+                          ": receive failed, pose updates stop until reconnected: " + e.what());
+      transport_.reset();
+      connected_ = false;
+    }
+  }
+}
+
+std::string CanPoseSource::describe() const {
+  return name_ + " (" + counters(merger_.stats()) + (connected_ ? ")" : "; disconnected)");
+}
+
+// ---- UdpPoseSource ----
+
+UdpPoseSource::UdpPoseSource(const net::HostPort& local, const LocalTangentPlane& ltp,
+                             std::function<std::int64_t()> now_ns, PoseSourceOptions options)
+    : options_(std::move(options)), merger_(ltp, std::move(now_ns)), receiver_(local) {
+  if (!options_.on_warning) options_.on_warning = default_warning;
+  thread_ = std::thread([this] { run(); });
+}
+
+UdpPoseSource::~UdpPoseSource() {
+  stopping_ = true;
+  if (thread_.joinable()) thread_.join();
+}
+
+void UdpPoseSource::run() {
+  std::array<std::uint8_t, kUdpBufferBytes> buffer{};
+  while (!stopping_) {
+    try {
+      const auto got = receiver_.receive(buffer, options_.receive_timeout_ms);
+      if (!got) continue;
+      if (got->truncated) {
+        merger_.count_malformed("datagram of " + std::to_string(got->datagram_size) +
+                                " bytes is not a pose message (" +
+                                std::to_string(kPoseMessageBytes) + " bytes)");
+        continue;
+      }
+      merger_.merge_pose_datagram(std::span<const std::uint8_t>(buffer.data(), got->size));
+    } catch (const std::exception& e) {
+      merger_.count_receive_error(e.what());
+      options_.on_warning(describe() + ": " + e.what());
+      // do not spin on a persistent socket error
+      std::this_thread::sleep_for(std::chrono::milliseconds(options_.receive_timeout_ms));
+    }
+  }
+}
+
+std::string UdpPoseSource::describe() const {
+  return "udp pose on " + net::to_string(receiver_.bound_address()) + " (" +
+         counters(merger_.stats()) + ")";
+}
+
+// ---- open_pose_source ----
+
+std::unique_ptr<PoseSource> open_pose_source(const std::string& spec, const LocalTangentPlane& ltp,
+                                             std::function<std::int64_t()> now_ns) {
+  constexpr std::string_view kCan = "can:";
+  constexpr std::string_view kSocketcand = "socketcand:";
+  constexpr std::string_view kUdp = "udp:";
+  const std::string what = "--pose-from " + spec;
+  try {
+    if (spec.starts_with(kUdp)) {
+      net::HostPort hp;
+      try {
+        hp = net::parse_host_port(spec.substr(kUdp.size()));
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(what + ": " + e.what());
+      }
+      return std::make_unique<UdpPoseSource>(hp, ltp, std::move(now_ns));
+    }
+    if (spec.starts_with(kCan)) {
+      const std::string iface = spec.substr(kCan.size());
+      if (iface.empty())
+        throw std::invalid_argument(what + ": missing interface name (can:IFACE, e.g. can:vcan0)");
+      return std::make_unique<CanPoseSource>(
+          "socketcan pose from " + iface,
+          [iface] { return std::make_unique<can::SocketCanTransport>(iface); }, ltp,
+          std::move(now_ns));
+    }
+    if (spec.starts_with(kSocketcand)) {
+      // HOST:PORT or HOST:PORT:CHANNEL (an IPv6 host is bracketed, so the last ':' splits)
+      const std::string rest = spec.substr(kSocketcand.size());
+      net::HostPort hp;
+      can::SocketcandClientOptions client;
+      try {
+        hp = net::parse_host_port(rest);
+      } catch (const std::invalid_argument&) {
+        const std::size_t colon = rest.rfind(':');
+        if (colon == std::string::npos || colon + 1 == rest.size())
+          throw std::invalid_argument(
+              what + ": expected socketcand:HOST:PORT[:CHANNEL], e.g. socketcand:127.0.0.1:29536");
+        client.channel = rest.substr(colon + 1);
+        try {
+          hp = net::parse_host_port(rest.substr(0, colon));
+        } catch (const std::invalid_argument& e) {
+          throw std::invalid_argument(what + ": " + e.what());
+        }
+      }
+      const std::string name =
+          "socketcand pose from " + net::to_string(hp) + " (" + client.channel + ")";
+      return std::make_unique<CanPoseSource>(
+          name, [hp, client] { return std::make_unique<can::SocketcandClient>(hp, client); }, ltp,
+          std::move(now_ns));
+    }
+  } catch (const std::invalid_argument&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(what + ": " + e.what());
+  }
+  throw std::invalid_argument(what +
+                              ": not a pose source: use can:IFACE, "
+                              "socketcand:HOST:PORT[:CHANNEL] or udp:HOST:PORT");
+}
+
+}  // namespace sonarloop::emulator

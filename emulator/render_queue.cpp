@@ -1,0 +1,136 @@
+#include "emulator/render_queue.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace sonarloop::emulator {
+
+RenderQueue::RenderQueue(PingProducer& producer, int slots, int threads, std::size_t packet_bytes)
+    : producer_(producer), threads_(std::max(1, threads)) {
+  if (slots < 1) throw std::invalid_argument("RenderQueue: at least one slot is needed");
+  slots_.resize(static_cast<std::size_t>(slots));
+  for (auto& s : slots_)
+    s.packet.assign(packet_bytes, 0);
+  state_.assign(slots_.size(), State::kFree);
+  released_.assign(slots_.size(), false);
+}
+
+RenderQueue::~RenderQueue() {
+  stop();
+}
+
+void RenderQueue::start(std::int64_t first, std::int64_t end) {
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (!workers_.empty()) throw std::logic_error("RenderQueue::start called twice");
+    next_claim_ = first;
+    consumer_next_ = first;
+    end_ = end;
+  }
+  for (int w = 0; w < threads_; ++w)
+    workers_.emplace_back([this, w] { work(w); });
+}
+
+void RenderQueue::stop() {
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    stopping_ = true;
+  }
+  producer_.cancel();
+  cv_.notify_all();
+  for (auto& t : workers_)
+    if (t.joinable()) t.join();
+  wakeup_.notify();
+}
+
+std::string RenderQueue::error() const {
+  std::lock_guard<std::mutex> lock(mu_);
+  return error_;
+}
+
+const PingSlot* RenderQueue::ready(std::int64_t k) const {
+  const auto s = static_cast<std::size_t>(k % static_cast<std::int64_t>(slots_.size()));
+  std::lock_guard<std::mutex> lock(mu_);
+  if (state_[s] == State::kReady && slots_[s].index == k) return &slots_[s];
+  return nullptr;
+}
+
+void RenderQueue::release(std::int64_t k) {
+  const auto s = static_cast<std::size_t>(k % static_cast<std::int64_t>(slots_.size()));
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    consumer_next_ = std::max(consumer_next_, k + 1);
+    if (slots_[s].index == k) {
+      if (state_[s] == State::kReady) {
+        state_[s] = State::kFree;
+      } else if (state_[s] == State::kProducing) {
+        released_[s] = true;  // the worker frees it when done
+      }
+    }
+  }
+  cv_.notify_all();
+}
+
+void RenderQueue::work(int worker) {
+  const auto n = static_cast<std::int64_t>(slots_.size());
+  std::unique_lock<std::mutex> lock(mu_);
+  for (;;) {
+    // claim the next ping whose slot is free, skipping pings the publisher gave up on
+    std::size_t s = 0;
+    std::int64_t k = 0;
+    cv_.wait(lock, [&] {
+      if (stopping_) return true;
+      next_claim_ = std::max(next_claim_, consumer_next_);
+      if (next_claim_ >= end_) return false;
+      s = static_cast<std::size_t>(next_claim_ % n);
+      return state_[s] == State::kFree;
+    });
+    if (stopping_) return;
+    k = next_claim_++;
+    state_[s] = State::kProducing;
+    released_[s] = false;
+    PingSlot& slot = slots_[s];
+    slot.index = k;
+    lock.unlock();
+
+    bool ok = true;
+    std::string what;
+    try {
+      producer_.produce(k, worker, slot);
+    } catch (const std::exception& e) {
+      ok = false;
+      what = e.what();
+    }
+
+    lock.lock();
+    if (!ok) {
+      if (error_.empty()) error_ = "ping " + std::to_string(k) + ": " + what;
+      failed_ = true;
+      stopping_ = true;
+      state_[s] = State::kFree;
+      lock.unlock();
+      cv_.notify_all();
+      producer_.cancel();
+      wakeup_.notify();
+      return;
+    }
+    produced_.fetch_add(1);
+    produce_total_ns_.fetch_add(slot.produce_ns);
+    std::int64_t prev = produce_max_ns_.load();
+    while (slot.produce_ns > prev &&
+           !produce_max_ns_.compare_exchange_weak(prev, slot.produce_ns)) {
+    }
+    if (released_[s]) {
+      state_[s] = State::kFree;
+      released_[s] = false;
+      cv_.notify_all();
+    } else {
+      state_[s] = State::kReady;
+      lock.unlock();
+      wakeup_.notify();
+      lock.lock();
+    }
+  }
+}
+
+}  // namespace sonarloop::emulator

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Idempotent: installs the Debian 12 packages sonarloop needs to build, test and plot.
+# Skips apt entirely when everything is already installed.
+set -euo pipefail
+pkgs=(build-essential cmake ninja-build pkg-config
+      libembree-dev libeigen3-dev libyaml-cpp-dev catch2 libpng-dev
+      can-utils python3-can python3-numpy python3-matplotlib iproute2)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "setup: installing ${missing[*]}" >&2
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+$SUDO env DEBIAN_FRONTEND=noninteractive apt-get update -qq
+$SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"

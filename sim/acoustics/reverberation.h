@@ -1,0 +1,24 @@
+#pragma once
+// Boundary (seabed) reverberation level of the Pailhas sonar equation (physics.md §0, §2.6).
+//
+//   RL = SL − 2·TL + S_s(θ) + 10·log10 A ,   A = (c·τ/2)·φ·r
+// Source: Pailhas, Petillot & Capus (2010) as given in physics.md §0; Urick (1983) ch. 8 (boundary
+// reverberation). A is the insonified seabed area of one resolution cell with r the SLANT range:
+// the ground extent cτ/(2cosθ) times the arc φ·r·cosθ, the cosines cancel, so it holds at any
+// grazing angle (physics.md §0 notes). Validity: pulse short against range (cτ/2 << r), beam narrow
+// (φ << 1 rad), flat bottom across the cell.
+namespace sonarloop::acoustics {
+
+// Insonified area of one cell, m²: (c·τ/2)·φ·r. range_m is slant range, pulse_length_s the CW
+// pulse length τ (use 1/B for a compressed chirp of bandwidth B), horizontal_beamwidth_rad the
+// along-track beamwidth φ.
+double reverberation_cell_area_m2(double range_m, double pulse_length_s, double sound_speed_m_s,
+                                  double horizontal_beamwidth_rad);
+
+// Boundary reverberation level, dB re 1 µPa: SL − 2·TL + S_s + 10·log10(A).
+// source_level_db re 1 µPa @ 1 m; one_way_tl_db from spreading.h; scattering_strength_db
+// S_s(θ) at the cell's grazing angle; area_m2 from reverberation_cell_area_m2 (> 0).
+double boundary_reverberation_level_db(double source_level_db, double one_way_tl_db,
+                                       double scattering_strength_db, double area_m2);
+
+}  // namespace sonarloop::acoustics

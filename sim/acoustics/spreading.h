@@ -1,0 +1,18 @@
+#pragma once
+// Transmission loss: spherical spreading plus absorption (physics.md §0; Urick, "Principles of
+// Underwater Sound", 3rd ed. 1983, ch. 5, with α in dB/m).
+//
+//   TL(r) = 20·log10(r / 1 m) + α·r      dB re 1 m, one way
+//
+// Validity: far field of the transducer (r above a few array lengths) in a homogeneous medium
+// with straight rays; r > 0 is required (r = 0 gives -inf). α comes from absorption.h in dB/km:
+// pass α_dB/km / kMetresPerKilometre.
+namespace sonarloop::acoustics {
+
+// One-way spherical transmission loss, dB. range_m > 0 (slant range), alpha_db_per_m >= 0.
+double transmission_loss_db(double range_m, double alpha_db_per_m);
+
+// Two-way (out and back) loss 2·TL, dB, as used in the sonar equation (physics.md §0).
+double two_way_transmission_loss_db(double range_m, double alpha_db_per_m);
+
+}  // namespace sonarloop::acoustics

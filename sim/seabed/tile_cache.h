@@ -1,0 +1,114 @@
+#pragma once
+// A thread-safe cache of lazily generated tiles keyed by (ti, tj), with least-recently-used
+// eviction beyond a capacity. A tile asked for by several threads at once is generated once:
+// the others wait for it. Tiles are immutable once made (shared_ptr<const V>), so an evicted
+// tile stays valid for whoever still holds it, and regenerating it gives the same bytes
+// because every generator here is a pure function of (seed, tile).
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <future>
+#include <memory>
+#include <mutex>
+#include <unordered_map>
+#include <vector>
+
+namespace sonarloop::seabed {
+
+struct TileKey {
+  std::int64_t ti = 0;
+  std::int64_t tj = 0;
+  bool operator==(const TileKey&) const = default;
+};
+
+struct TileKeyHash {
+  std::size_t operator()(const TileKey& k) const {
+    const auto a = static_cast<std::uint64_t>(k.ti) * 0x9E3779B97F4A7C15ULL;
+    const auto b = static_cast<std::uint64_t>(k.tj) * 0xC2B2AE3D27D4EB4FULL;
+    return static_cast<std::size_t>(a ^ (b >> 7) ^ (b << 29));
+  }
+};
+
+template <class V>
+class TileCache {
+ public:
+  using Ptr = std::shared_ptr<const V>;
+
+  explicit TileCache(std::size_t capacity) : capacity_(capacity) {}
+
+  // Returns the cached tile or makes it with `make` (called outside the lock).
+  Ptr get(const TileKey& key, const std::function<Ptr()>& make) {
+    std::promise<Ptr> promise;
+    std::shared_future<Ptr> future;
+    bool mine = false;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      auto it = map_.find(key);
+      if (it != map_.end()) {
+        it->second.last_use = ++clock_;
+        future = it->second.value;
+      } else {
+        future = promise.get_future().share();
+        map_.emplace(key, Entry{future, ++clock_});
+        mine = true;
+      }
+    }
+    if (mine) {
+      try {
+        promise.set_value(make());
+      } catch (...) {
+        // forget the failed entry so a later call retries, and pass the error on
+        std::lock_guard<std::mutex> lock(mutex_);
+        map_.erase(key);
+        promise.set_exception(std::current_exception());
+        throw;
+      }
+      evict_if_needed();
+    }
+    return future.get();
+  }
+
+  std::size_t size() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return map_.size();
+  }
+
+  void clear() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    map_.clear();
+  }
+
+ private:
+  struct Entry {
+    std::shared_future<Ptr> value;
+    std::uint64_t last_use = 0;
+  };
+
+  void evict_if_needed() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (map_.size() <= capacity_) return;
+    // drop the least recently used ready entries until a quarter below capacity
+    std::vector<std::pair<std::uint64_t, TileKey>> ready;
+    ready.reserve(map_.size());
+    for (const auto& [k, e] : map_) {
+      if (e.value.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+        ready.emplace_back(e.last_use, k);
+      }
+    }
+    std::sort(ready.begin(), ready.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    const std::size_t target = capacity_ - capacity_ / 4;
+    for (const auto& [use, k] : ready) {
+      if (map_.size() <= target) break;
+      map_.erase(k);
+    }
+  }
+
+  std::size_t capacity_;
+  mutable std::mutex mutex_;
+  std::unordered_map<TileKey, Entry, TileKeyHash> map_;
+  std::uint64_t clock_ = 0;
+};
+
+}  // namespace sonarloop::seabed

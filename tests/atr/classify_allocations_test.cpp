@@ -1,0 +1,129 @@
+// Classifier::classify() runs onboard on a stream of chips: once the classifier is set up it
+// allocates nothing, for valid and rejected chips alike. Eigen allocates with malloc, not with
+// operator new, so malloc itself is counted: by interposing glibc's malloc family for this test
+// executable, or, under AddressSanitizer (which owns malloc), through its allocation hooks.
+#include <catch2/catch.hpp>
+#include <cstddef>
+#include <cstdlib>
+#include <limits>
+#include <vector>
+
+#include "atr/subspace_classifier.h"
+#include "tests/atr/synthetic_chips.h"
+
+namespace {
+// single-threaded test: plain globals (thread_local could itself allocate on first use)
+bool g_counting = false;
+long g_allocations = 0;
+}  // namespace
+
+#if defined(__SANITIZE_ADDRESS__)
+// from the sanitizer runtime (libasan); GCC does not ship <sanitizer/allocator_interface.h>
+extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
+                                                                             std::size_t),
+                                                         void (*free_hook)(const volatile void*));
+namespace {
+void on_malloc(const volatile void*, std::size_t) {
+  if (g_counting) ++g_allocations;
+}
+void on_free(const volatile void*) {}
+const int g_hooks_installed = __sanitizer_install_malloc_and_free_hooks(on_malloc, on_free);
+}  // namespace
+#else
+// glibc's own entry points, which the replacements forward to
+extern "C" {
+void* __libc_malloc(std::size_t size) noexcept;
+void* __libc_calloc(std::size_t n, std::size_t size) noexcept;
+void* __libc_realloc(void* p, std::size_t size) noexcept;
+void __libc_free(void* p) noexcept;
+
+void* malloc(std::size_t size) noexcept {
+  if (g_counting) ++g_allocations;
+  return __libc_malloc(size);
+}
+void* calloc(std::size_t n, std::size_t size) noexcept {
+  if (g_counting) ++g_allocations;
+  return __libc_calloc(n, size);
+}
+void* realloc(void* p, std::size_t size) noexcept {
+  if (g_counting) ++g_allocations;
+  return __libc_realloc(p, size);
+}
+void free(void* p) noexcept {
+  __libc_free(p);
+}
+}
+#endif
+
+namespace {
+
+template <class F>
+long allocations_in(F&& f) {
+  g_allocations = 0;
+  g_counting = true;
+  f();
+  g_counting = false;
+  return g_allocations;
+}
+
+}  // namespace
+
+using namespace sonarloop;
+using namespace sonarloop::atr;
+
+TEST_CASE("classify allocations: the counter sees malloc and new") {
+  // the harness itself works: a vector and an Eigen vector are counted
+  CHECK(allocations_in([] {
+          std::vector<float> v(100);
+          v[0] = 1.0f;
+          REQUIRE(v[0] == 1.0f);
+        }) >= 1);
+  CHECK(allocations_in([] {
+          Eigen::VectorXf v = Eigen::VectorXf::Ones(1000);
+          REQUIRE(v.sum() == 1000.0f);
+        }) >= 1);
+}
+
+TEST_CASE("classify allocations: classify() allocates nothing once set up") {
+  // 64 x 64 chips, 4 classes, p = 20, multi-aspect and group subspaces: every code path
+  const auto lc = testing::make_linear_classes(4, 64, 64, 3, 5);
+  const std::vector<std::string> names = {"cylinder", "hemisphere", "manta", "rock"};
+  Rng rng(9, RngStream::kTraining, 5);
+  std::vector<LabelledChip> train;
+  for (int c = 0; c < 4; ++c) {
+    for (int i = 0; i < 40; ++i) {
+      LabelledChip l;
+      l.chip = testing::sample_linear(lc, c, rng, 0.1);
+      l.label = names[static_cast<std::size_t>(c)];
+      l.aspect_deg = rng.uniform(0.0, 360.0);
+      train.push_back(std::move(l));
+    }
+  }
+  TrainOptions opt;
+  opt.aspect_sectors = 2;
+  opt.group_subspaces = true;
+  Classifier clf(train_model(train, opt));
+  std::vector<Chip> probes;
+  for (int c = 0; c < 4; ++c)
+    probes.push_back(testing::sample_linear(lc, c, rng, 0.1));
+  Chip constant{64, 64, std::vector<float>(4096, 2.0f)};
+  Chip nan = probes[0];
+  nan.pixels[100] = std::numeric_limits<float>::quiet_NaN();
+  Chip wrong{32, 128, probes[0].pixels};
+
+  int correct = 0;
+  const long n = allocations_in([&] {
+    for (int rep = 0; rep < 3; ++rep) {
+      for (int c = 0; c < 4; ++c) {
+        if (clf.classify(probes[static_cast<std::size_t>(c)].view()).ok()) {
+          correct += clf.result().class_index == c;
+        }
+      }
+      correct -= clf.classify(constant.view()).ok();
+      correct -= clf.classify(nan.view()).ok();
+      correct -= clf.classify(wrong.view()).ok();
+    }
+  });
+  CHECK(n == 0);
+  CHECK(correct == 12);
+}

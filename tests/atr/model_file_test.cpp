@@ -1,0 +1,241 @@
+// The model file: save -> load gives the same model and the same scores, bit for bit; the byte
+// layout is as documented; bad magic, versions, truncation, trailing bytes, corruption and
+// inconsistent contents are clear errors.
+#include <catch2/catch.hpp>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "atr/model_file.h"
+#include "tests/atr/synthetic_chips.h"
+#include "tests/support/temp_dir.h"
+
+using namespace sonarloop;
+using namespace sonarloop::atr;
+
+namespace {
+
+std::vector<LabelledChip> chips(int per_class, std::uint64_t seed, bool aspects) {
+  const auto lc = testing::make_linear_classes(3, 8, 6, 3, 77);
+  const std::vector<std::string> names = {"manta", "rock", "cuboid"};
+  Rng rng(seed, RngStream::kTraining, 4);
+  std::vector<LabelledChip> out;
+  for (int c = 0; c < 3; ++c) {
+    for (int i = 0; i < per_class; ++i) {
+      LabelledChip l;
+      l.chip = testing::sample_linear(lc, c, rng, 0.2, 3.0, 100.0);
+      l.label = names[static_cast<std::size_t>(c)];
+      if (aspects) l.aspect_deg = rng.uniform(0.0, 360.0);
+      out.push_back(std::move(l));
+    }
+  }
+  return out;
+}
+
+Model trained(bool multi) {
+  TrainOptions opt;
+  opt.p = 5;
+  if (multi) {
+    opt.aspect_sectors = 3;
+    opt.group_subspaces = true;
+  }
+  return train_model(chips(15, 1, multi), opt);
+}
+
+void expect_same(const Model& a, const Model& b) {
+  CHECK(a.chip_width == b.chip_width);
+  CHECK(a.chip_height == b.chip_height);
+  CHECK(a.p == b.p);
+  CHECK(a.aspect_sectors == b.aspect_sectors);
+  REQUIRE(a.classes.size() == b.classes.size());
+  REQUIRE(a.groups.size() == b.groups.size());
+  auto same_class = [](const ClassModel& x, const ClassModel& y) {
+    CHECK(x.name == y.name);
+    CHECK(x.mine_like == y.mine_like);
+    REQUIRE(x.subspaces.size() == y.subspaces.size());
+    for (std::size_t s = 0; s < x.subspaces.size(); ++s) {
+      const Subspace& u = x.subspaces[s];
+      const Subspace& v = y.subspaces[s];
+      CHECK(u.aspect_min_deg == v.aspect_min_deg);
+      CHECK(u.aspect_max_deg == v.aspect_max_deg);
+      CHECK(u.train_count == v.train_count);
+      CHECK(u.mean == v.mean);
+      CHECK(u.basis == v.basis);
+      CHECK(u.eigenvalues == v.eigenvalues);
+    }
+  };
+  for (std::size_t c = 0; c < a.classes.size(); ++c)
+    same_class(a.classes[c], b.classes[c]);
+  for (std::size_t g = 0; g < a.groups.size(); ++g)
+    same_class(a.groups[g], b.groups[g]);
+}
+
+std::uint32_t le32(const std::vector<std::uint8_t>& b, std::size_t at) {
+  return b[at] | b[at + 1] << 8 | b[at + 2] << 16 | static_cast<std::uint32_t>(b[at + 3]) << 24;
+}
+
+void put_le32(std::vector<std::uint8_t>& b, std::size_t at, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i)
+    b[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
+}
+
+// Rewrites the CRC trailer after an edit, so that the parser sees the edited content.
+void fix_crc(std::vector<std::uint8_t>& b) {
+  put_le32(b, b.size() - 4, crc32(std::span(b).first(b.size() - 4)));
+}
+
+}  // namespace
+
+TEST_CASE("model file: save -> load gives the same model and identical scores") {
+  testing::TempDir dir("atr-model-file");
+  for (const bool multi : {false, true}) {
+    CAPTURE(multi);
+    const Model m = trained(multi);
+    const std::string path = dir.file(multi ? "multi.slpca" : "single.slpca");
+    save_model(m, path);
+    const Model back = load_model(path);
+    expect_same(m, back);
+    // re-encoding the loaded model gives the same bytes
+    CHECK(encode_model(back) == encode_model(m));
+    // the same answers, bit for bit
+    Classifier a(m), b(back);
+    for (const auto& t : chips(10, 2, multi)) {
+      REQUIRE(a.classify(t.chip.view()).ok());
+      REQUIRE(b.classify(t.chip.view()).ok());
+      CHECK(a.result().class_index == b.result().class_index);
+      CHECK(a.result().class_distance == b.result().class_distance);
+      CHECK(a.result().class_subspace == b.result().class_subspace);
+      CHECK(a.result().mine_distance == b.result().mine_distance);
+      CHECK(a.result().non_mine_distance == b.result().non_mine_distance);
+      CHECK(a.result().mine_like == b.result().mine_like);
+    }
+  }
+}
+
+TEST_CASE("model file: the byte layout is the documented one") {
+  const Model m = trained(false);
+  const auto b = encode_model(m);
+  REQUIRE(b.size() > 40);
+  CHECK(std::memcmp(b.data(), "SLPCA", 5) == 0);
+  CHECK(b[5] == 0);
+  CHECK((b[6] | b[7] << 8) == kModelFileVersion);
+  CHECK(le32(b, 8) == 8);   // width
+  CHECK(le32(b, 12) == 6);  // height
+  CHECK(le32(b, 16) == 5);  // p
+  CHECK(le32(b, 20) == 1);  // aspect sectors
+  CHECK(le32(b, 24) == 3);  // classes
+  CHECK(le32(b, 28) == 0);  // groups
+  CHECK(le32(b, 32) == 0);  // reserved
+  // first class record: "cuboid" (classes are sorted by name)
+  CHECK((b[36] | b[37] << 8) == 6);
+  CHECK(std::string(b.begin() + 38, b.begin() + 44) == "cuboid");
+  CHECK(b[44] == 1);        // cuboid is mine-like
+  CHECK(le32(b, 46) == 1);  // one subspace
+  // size: header + per class (name record + subspaces) + crc
+  std::size_t expect = 36 + 4;
+  for (const auto& c : m.classes) {
+    expect += 2 + c.name.size() + 2 + 4;
+    for (const auto& s : c.subspaces) {
+      expect += 16 + 8 + 8 * s.rank() + 4 * 48 * (1 + s.rank());
+    }
+  }
+  CHECK(b.size() == expect);
+  CHECK(le32(b, b.size() - 4) == crc32(std::span(b).first(b.size() - 4)));
+  // CRC-32 check value of the standard ("123456789" -> 0xCBF43926)
+  const std::string check = "123456789";
+  CHECK(crc32(std::span(reinterpret_cast<const std::uint8_t*>(check.data()), check.size())) ==
+        0xCBF43926u);
+}
+
+TEST_CASE("model file: bad magic, version, truncation, trailing bytes and corruption") {
+  const auto good = encode_model(trained(true));
+  REQUIRE_NOTHROW(decode_model(good, "m.slpca"));
+
+  auto b = good;
+  b[0] = 'X';
+  CHECK_THROWS_WITH(decode_model(b, "m.slpca"),
+                    Catch::Contains("m.slpca") && Catch::Contains("bad magic"));
+  CHECK_THROWS_WITH(decode_model(std::vector<std::uint8_t>{'S', 'L'}, "m"),
+                    Catch::Contains("bad magic"));
+
+  b = good;
+  b[6] = 2;
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("unsupported format version 2") &&
+                                              Catch::Contains("reads version 1"));
+
+  // every truncation is an error, none crashes
+  for (std::size_t len = 0; len < good.size(); ++len) {
+    const std::vector<std::uint8_t> cut(good.begin(), good.begin() + static_cast<long>(len));
+    CHECK_THROWS(decode_model(cut, "m"));
+  }
+  const std::vector<std::uint8_t> half(good.begin(),
+                                       good.begin() + static_cast<long>(good.size() / 2));
+  CHECK_THROWS_WITH(decode_model(half, "m"), Catch::Contains("truncated"));
+
+  b = good;
+  b.insert(b.end() - 4, {1, 2, 3});
+  fix_crc(b);
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("3 unexpected bytes"));
+
+  // a flipped bit in the data is caught by the checksum
+  b = good;
+  b[b.size() / 2] ^= 0x10;
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("checksum"));
+}
+
+TEST_CASE("model file: inconsistent contents are rejected even with a valid checksum") {
+  const auto good = encode_model(trained(false));
+  // chip size 0
+  auto b = good;
+  put_le32(b, 8, 0);
+  fix_crc(b);
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("chip size 0 x 6"));
+  // a width that does not match the stored vectors: the data no longer parses to the end
+  b = good;
+  put_le32(b, 8, 9);
+  fix_crc(b);
+  CHECK_THROWS(decode_model(b, "m"));
+  // three groups
+  b = good;
+  put_le32(b, 28, 3);
+  fix_crc(b);
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("group count 3"));
+  // p smaller than a stored rank
+  b = good;
+  put_le32(b, 16, 2);
+  fix_crc(b);
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("exceeds p = 2"));
+  // a NaN in the first mean image (the first class: name "cuboid", 1 subspace, rank 5)
+  b = good;
+  const std::size_t mean_at = 36 + 2 + 6 + 2 + 4 + 16 + 8 + 8 * 5;
+  put_le32(b, mean_at, 0x7FC00000u);
+  fix_crc(b);
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("non-finite"));
+  // a basis that is not orthonormal: scale the first basis vector
+  b = good;
+  const std::size_t basis_at = mean_at + 4 * 48;
+  for (std::size_t i = 0; i < 48; ++i) {
+    float v;
+    std::uint32_t u = le32(b, basis_at + 4 * i);
+    std::memcpy(&v, &u, 4);
+    v *= 1.1f;
+    std::memcpy(&u, &v, 4);
+    put_le32(b, basis_at + 4 * i, u);
+  }
+  fix_crc(b);
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("not orthonormal"));
+}
+
+TEST_CASE("model file: file errors name the path") {
+  testing::TempDir dir("atr-model-file-errors");
+  CHECK_THROWS_WITH(load_model(dir.file("missing.slpca")), Catch::Contains("missing.slpca"));
+  {
+    std::ofstream out(dir.file("text.slpca"));
+    out << "not a model\n";
+  }
+  CHECK_THROWS_WITH(load_model(dir.file("text.slpca")),
+                    Catch::Contains("text.slpca") && Catch::Contains("bad magic"));
+  CHECK_THROWS_WITH(save_model(trained(false), dir.file("no/such/dir/m.slpca")),
+                    Catch::Contains("cannot create"));
+}

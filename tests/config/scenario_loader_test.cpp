@@ -1,0 +1,327 @@
+// Tests of the scenario loader (config/loader/scenario_loader.h): scene keys, `sonar:` and
+// `vehicle:` share the top level, the sonar is a preset name or a map (default: pailhas_strip),
+// the vehicle is checked against the scene's seabed, unknown top-level keys are still reported,
+// every shipped scenario loads, and config/reference.yaml gives exactly the documented defaults.
+// (vehicle_loader_test covers the vehicle section key by key.)
+#include "config/loader/scenario_loader.h"
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "config/default_scenario.h"
+#include "config/loader/scene_loader.h"
+#include "config/loader/sonar_loader.h"
+#include "tests/support/temp_dir.h"
+
+using namespace sonarloop::config;
+namespace render = sonarloop::render;
+namespace acoustics = sonarloop::acoustics;
+namespace scene = sonarloop::scene;
+
+namespace {
+
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
+
+ConfigIssue expect_error(const std::string& yaml, const std::string& path,
+                         const std::vector<std::string>& parts = {}) {
+  INFO("yaml:\n" << yaml);
+  try {
+    parse_scenario(yaml, "scenario.yaml");
+  } catch (const ConfigError& e) {
+    const std::string msg = e.what();
+    INFO("message: " << msg);
+    const std::string shown = path.empty() ? "(top level)" : path;
+    CHECK(msg.rfind("scenario.yaml: " + shown + ": ", 0) == 0);
+    CHECK(e.first().path == path);
+    CHECK(contains(msg, "; allowed: "));
+    for (const auto& p : parts)
+      CHECK(contains(msg, p));
+    return e.first();
+  }
+  FAIL("accepted");
+  return {};
+}
+
+void check_same(const render::SonarDesc& a, const render::SonarDesc& b) {
+  CHECK(a.name == b.name);
+  CHECK(a.frequency_hz == b.frequency_hz);
+  CHECK(a.source_level_db == b.source_level_db);
+  CHECK(a.pulse_length_s == b.pulse_length_s);
+  CHECK(a.chirp_bandwidth_hz == b.chirp_bandwidth_hz);
+  CHECK(a.array_length_m == b.array_length_m);
+  CHECK(a.array_height_m == b.array_height_m);
+  CHECK(a.depression_deg == b.depression_deg);
+  CHECK(a.max_range_m == b.max_range_m);
+  CHECK(a.bin_size_m == b.bin_size_m);
+  CHECK(a.ping_period_s == b.ping_period_s);
+  CHECK(a.along_track == b.along_track);
+  CHECK(a.along_track_resolution_m == b.along_track_resolution_m);
+  CHECK(a.sample_type == b.sample_type);
+  CHECK(a.tvg == b.tvg);
+  CHECK(a.gain_db == b.gain_db);
+  CHECK(a.bottom_model == b.bottom_model);
+  CHECK(a.lambert_mu_db == b.lambert_mu_db);
+  CHECK(a.speckle == b.speckle);
+  CHECK(a.noise == b.noise);
+  CHECK(a.rays_per_bin == b.rays_per_bin);
+  CHECK(a.along_track_rays == b.along_track_rays);
+}
+
+// the scene fields a scenario test can tell apart (scene_loader_test compares every field)
+void check_same_scene(const scene::SceneDesc& a, const scene::SceneDesc& b) {
+  CHECK(a.seed == b.seed);
+  CHECK(a.name == b.name);
+  CHECK(a.water.depth_m == b.water.depth_m);
+  CHECK(a.seabed.extent_m == b.seabed.extent_m);
+  CHECK(a.seabed.regions.size() == b.seabed.regions.size());
+  CHECK(a.targets.size() == b.targets.size());
+}
+
+const std::vector<std::string> kSonarKeys = {"name",
+                                             "preset",
+                                             "frequency_khz",
+                                             "source_level_db",
+                                             "pulse_length_us",
+                                             "chirp_bandwidth_khz",
+                                             "array_length_m",
+                                             "array_height_m",
+                                             "depression_deg",
+                                             "max_range_m",
+                                             "bin_size_cm",
+                                             "ping_period_s",
+                                             "along_track",
+                                             "along_track_resolution_cm",
+                                             "sample_type",
+                                             "tvg",
+                                             "gain_db",
+                                             "bottom_model",
+                                             "lambert_mu_db",
+                                             "speckle",
+                                             "noise",
+                                             "rays_per_bin",
+                                             "along_track_rays"};
+
+}  // namespace
+
+TEST_CASE("scenario_loader: no sonar key gives the pailhas_strip preset") {
+  const auto s = parse_scenario("seed: 4\nwater: {depth_m: 40}\n", "survey.yaml");
+  CHECK(s.scene.seed == 4);
+  CHECK(s.scene.water.depth_m == 40);
+  CHECK(s.scene.name == "survey");
+  check_same(s.sonar, builtin_sonar("pailhas_strip"));
+  // the scene part is what the scene loader gives for the same text
+  check_same_scene(s.scene, parse_scene("seed: 4\nwater: {depth_m: 40}\n", "survey.yaml"));
+  // empty documents, empty or null sonar
+  check_same(parse_scenario("", "e.yaml").sonar, builtin_sonar("pailhas_strip"));
+  check_same(parse_scenario("sonar:\n", "e.yaml").sonar, builtin_sonar("pailhas_strip"));
+  check_same(parse_scenario("sonar: {}\n", "e.yaml").sonar, builtin_sonar("pailhas_strip"));
+}
+
+TEST_CASE("scenario_loader: sonar as a preset name and as a map") {
+  for (const auto& name : builtin_sonar_names()) {
+    INFO(name);
+    const auto s = parse_scenario("seed: 1\nsonar: " + name + "\n", "s.yaml");
+    check_same(s.sonar, builtin_sonar(name));
+    CHECK(s.scene.seed == 1);
+  }
+  // a map with a preset and overrides, keys of the scene on either side
+  const auto s = parse_scenario(R"(seed: 2
+sonar:
+  preset: sidescan_100khz
+  name: towfish
+  max_range_m: 100
+  tvg: point
+water:
+  depth_m: 60
+)",
+                                "map.yaml");
+  auto expect = builtin_sonar("sidescan_100khz");
+  expect.name = "towfish";
+  expect.max_range_m = 100;
+  expect.tvg = acoustics::TvgLaw::kPoint;
+  check_same(s.sonar, expect);
+  CHECK(s.scene.seed == 2);
+  CHECK(s.scene.water.depth_m == 60);
+  // a map without a preset starts from pailhas_strip; flow style works
+  const auto f = parse_scenario("sonar: {bin_size_cm: 3, along_track_resolution_cm: 3}\n", "f");
+  auto pailhas = builtin_sonar("pailhas_strip");
+  pailhas.bin_size_m = 0.03;
+  pailhas.along_track_resolution_m = 0.03;
+  check_same(f.sonar, pailhas);
+}
+
+TEST_CASE("scenario_loader: errors in the sonar section name their path") {
+  expect_error("sonar:\n  frequency_khz: 20\n", "sonar.frequency_khz",
+               {"20 is out of range (line 2, column 18)", "allowed: 50 .. 1000"});
+  auto i = expect_error("sonar:\n  frequncy_khz: 200\n", "sonar.frequncy_khz",
+                        {"unknown key 'frequncy_khz'", "allowed: name, preset, frequency_khz"});
+  CHECK(i.suggestion == "frequency_khz");
+  i = expect_error("sonar: sidescan_450\n", "sonar",
+                   {"'sidescan_450' is not a sonar preset",
+                    "allowed: sidescan_100khz, sidescan_450khz, sas_3cm, pailhas_strip, or a map "
+                    "of sonar keys"});
+  CHECK(i.suggestion == "sidescan_450khz");
+  expect_error("sonar:\n  preset: nope\n", "sonar.preset", {"'nope' is not a sonar preset"});
+  expect_error("sonar: [1, 2]\n", "sonar", {"is not a sonar preset name or a map"});
+  expect_error("sonar:\n  max_range_m: 1000\n  bin_size_cm: 1\n", "sonar.bin_size_cm",
+               {"100000 samples per side"});
+}
+
+TEST_CASE("scenario_loader: the vehicle section beside the others") {
+  // absent: VehicleDesc{}; present: parsed, wherever it stands among the other keys
+  const auto d = parse_scenario("seed: 3\n", "s.yaml");
+  CHECK(d.vehicle.trajectory.kind == sonarloop::vehicle::TrajectoryKind::kStraight);
+  CHECK(d.vehicle.trajectory.straight_length_m == 1000);
+  CHECK(d.vehicle.nav.position_noise_sd_m == 0);
+  const auto s = parse_scenario(R"(vehicle:
+  trajectory:
+    kind: lawnmower
+    lawnmower: {origin_m: [20, -80], leg_length_m: 150, legs: 2, line_spacing_m: 40}
+    max_turn_rate_deg_s: 10
+    depth: {mode: altitude, altitude_m: 8}
+  nav: {heading_bias_deg: 1}
+sonar: sas_3cm
+seabed:
+  origin_m: [0, -100]
+  extent_m: [200, 200]
+seed: 5
+)",
+                                "survey.yaml");
+  CHECK(s.scene.seed == 5);
+  CHECK(s.sonar.name == "sas_3cm");
+  CHECK(s.vehicle.trajectory.lawnmower.legs == 2);
+  CHECK(s.vehicle.trajectory.depth.altitude_m == 8);
+  CHECK(s.vehicle.nav.heading_bias == Approx(0.0174532925199));
+  // the seabed rule uses the scene read from the same file, even when it comes later: moved
+  // 30 m south, the survey's U-turn leaves the seabed's northern edge
+  const std::string moved = R"(vehicle:
+  trajectory:
+    kind: lawnmower
+    lawnmower: {origin_m: [20, -80], leg_length_m: 150, legs: 2, line_spacing_m: 40}
+    max_turn_rate_deg_s: 10
+    depth: {mode: altitude, altitude_m: 8}
+seabed:
+  origin_m: [-30, -100]
+  extent_m: [200, 200]
+)";
+  expect_error(moved, "vehicle.trajectory",
+               {"the planned path leaves the seabed extent", "U-turn after lawnmower leg 0",
+                "north -30 .. 170, east -100 .. 100"});
+  // errors in the section name their full path
+  expect_error("vehicle:\n  trajectory:\n    kind: zigzag\n", "vehicle.trajectory.kind",
+               {"'zigzag' is not a trajectory kind (line 3, column 11)",
+                "allowed: straight, waypoints, lawnmower"});
+  expect_error("vehicle: lawnmower\n", "vehicle",
+               {"'lawnmower' is not a map", "allowed: a map with trajectory, nav"});
+}
+
+TEST_CASE("scenario_loader: unknown top-level keys are still reported") {
+  auto i = expect_error(
+      "seed: 1\nsonr: sas_3cm\n", "sonr",
+      {"unknown key 'sonr'", "allowed: seed, name, origin, water, seabed, targets, sonar, vehicle",
+       "(did you mean 'sonar'?)"});
+  CHECK(i.line == 2);
+  i = expect_error("seeed: 1\n", "seeed", {"(did you mean 'seed'?)"});
+  // every unknown key in one error, in file order
+  try {
+    parse_scenario("bogus: 1\nsonar: sas_3cm\nplatform: {}\n", "many.yaml");
+    FAIL("accepted");
+  } catch (const ConfigError& e) {
+    REQUIRE(e.issues().size() == 2);
+    CHECK(e.issues()[0].path == "bogus");
+    CHECK(e.issues()[1].path == "platform");
+  }
+  // the whole document must be a map
+  expect_error("- 1\n", "",
+               {"is not a map",
+                "a map with seed, name, origin, water, seabed, "
+                "targets, sonar, vehicle"});
+  // scene errors keep their paths
+  expect_error("water: {depth_m: 1}\nsonar: sas_3cm\n", "water.depth_m", {"1 is out of range"});
+}
+
+TEST_CASE("scenario_loader: every scenario shipped in config/ loads, and the embedded default") {
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::directory_iterator(SONARLOOP_SOURCE_DIR "/config")) {
+    if (e.path().extension() == ".yaml") files.push_back(e.path());
+  }
+  CHECK(files.size() >= 6);
+  for (const auto& f : files) {
+    INFO(f.string());
+    CHECK_NOTHROW(load_scenario(f.string()));
+  }
+  const auto embedded = parse_scenario(default_scenario_yaml(), "<default scenario>");
+  const auto from_file = load_scenario(SONARLOOP_SOURCE_DIR "/config/default.yaml");
+  check_same(embedded.sonar, from_file.sonar);
+  CHECK(embedded.scene.seed == from_file.scene.seed);
+  CHECK(embedded.scene.targets.size() == from_file.scene.targets.size());
+}
+
+TEST_CASE("scenario_loader: config/reference.yaml gives exactly the documented defaults") {
+  const auto ref = load_scenario(SONARLOOP_SOURCE_DIR "/config/reference.yaml");
+  // the sonar: the pailhas_strip preset, which is also the default of an empty scenario
+  check_same(ref.sonar, builtin_sonar("pailhas_strip"));
+  check_same(ref.sonar, parse_scenario("", "empty.yaml").sonar);
+  // the scene: the defaults of an empty scenario (scene_loader_test checks every field)
+  auto empty = parse_scenario("", "reference.yaml").scene;
+  check_same_scene(ref.scene, empty);
+
+  // the sonar section lists every key, each with a comment saying what is allowed
+  const std::string path = SONARLOOP_SOURCE_DIR "/config/reference.yaml";
+  std::ifstream in(path);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  const Field root = parse_document(text, path);
+  const Field sonar = root.child("sonar");
+  REQUIRE(sonar.is_map());
+  for (const auto& key : kSonarKeys) {
+    INFO(key);
+    CHECK(sonar.has(key));
+    const auto at = text.find("\n  " + key + ":");
+    REQUIRE(at != std::string::npos);
+    const auto eol = text.find('\n', at + 1);
+    CHECK(contains(text.substr(at + 1, eol - at - 1), "#"));
+  }
+  CHECK_NOTHROW(sonar.finish());  // and no other key
+  CHECK(sonar.child("preset").node().Scalar() == std::string(kDefaultSonarPreset));
+  // the vehicle section is there too (vehicle_loader_test checks every key of it)
+  CHECK(root.child("vehicle").is_map());
+  CHECK(ref.vehicle.trajectory.straight_length_m == 1000);
+}
+
+TEST_CASE("scenario_loader: load_scenario reads a file") {
+  sonarloop::testing::TempDir dir("config-scenario-loader");
+  {
+    std::ofstream out(dir.file("harbour.yaml"));
+    out << "seed: 9\nsonar: sidescan_450khz\n";
+  }
+  const auto s = load_scenario(dir.file("harbour.yaml"));
+  CHECK(s.scene.name == "harbour");
+  CHECK(s.scene.seed == 9);
+  CHECK(s.sonar.name == "sidescan_450khz");
+  try {
+    load_scenario(dir.file("missing.yaml"));
+    FAIL("loaded a missing file");
+  } catch (const ConfigError& e) {
+    CHECK(std::string(e.what()).rfind(dir.file("missing.yaml") + ": (file): no such file", 0) == 0);
+  }
+  {
+    std::ofstream out(dir.file("bad.yaml"));
+    out << "seed: 9\nsonar:\n  bin_size_cm: 0\n";
+  }
+  try {
+    load_scenario(dir.file("bad.yaml"));
+    FAIL("accepted bin_size_cm 0");
+  } catch (const ConfigError& e) {
+    CHECK(std::string(e.what()).rfind(
+              dir.file("bad.yaml") + ": sonar.bin_size_cm: 0 is out of range (line 3, column 16)",
+              0) == 0);
+  }
+}

@@ -1,0 +1,1066 @@
+// Tests of the sonar loader (config/loader/sonar_loader.h): every key and its unit conversion,
+// the defaults (the pailhas_strip preset), the built-in presets, preset + override, every
+// validation rule, and a seeded randomized test (style.md habit 22) that round-trips random valid
+// sonars and checks that corruptions are always rejected with a ConfigError.
+#include "config/loader/sonar_loader.h"
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sim/core/rng.h"
+#include "sim/render/sonar.h"
+#include "tests/support/temp_dir.h"
+
+using sonarloop::Rng;
+using sonarloop::RngStream;
+using namespace sonarloop::config;
+namespace render = sonarloop::render;
+namespace acoustics = sonarloop::acoustics;
+namespace scene = sonarloop::scene;
+
+namespace {
+
+const std::vector<std::string> kPresetNames = {"sidescan_100khz", "sidescan_450khz", "sas_3cm",
+                                               "pailhas_strip"};
+
+// every sonar key, in the documented order
+const std::vector<std::string> kKeys = {"name",
+                                        "preset",
+                                        "frequency_khz",
+                                        "source_level_db",
+                                        "pulse_length_us",
+                                        "chirp_bandwidth_khz",
+                                        "array_length_m",
+                                        "array_height_m",
+                                        "depression_deg",
+                                        "max_range_m",
+                                        "bin_size_cm",
+                                        "ping_period_s",
+                                        "along_track",
+                                        "along_track_resolution_cm",
+                                        "sample_type",
+                                        "tvg",
+                                        "gain_db",
+                                        "bottom_model",
+                                        "lambert_mu_db",
+                                        "speckle",
+                                        "noise",
+                                        "rays_per_bin",
+                                        "along_track_rays"};
+
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Parses `yaml` as "sonar.yaml", which must fail; checks the message form, that the first issue
+// is at `path`, and that every `parts` string is in the message.
+ConfigIssue expect_error(const std::string& yaml, const std::string& path,
+                         const std::vector<std::string>& parts = {}) {
+  INFO("yaml:\n" << yaml);
+  try {
+    parse_sonar(yaml, "sonar.yaml");
+  } catch (const ConfigError& e) {
+    const std::string msg = e.what();
+    INFO("message: " << msg);
+    const std::string shown = path.empty() ? "(top level)" : path;
+    CHECK(msg.rfind("sonar.yaml: " + shown + ": ", 0) == 0);
+    CHECK(e.first().path == path);
+    CHECK(contains(msg, "; allowed: "));
+    for (const auto& p : parts)
+      CHECK(contains(msg, p));
+    return e.first();
+  }
+  FAIL("accepted");
+  return {};
+}
+
+// exact comparison, field by field
+void check_same(const render::SonarDesc& a, const render::SonarDesc& b) {
+  CHECK(a.name == b.name);
+  CHECK(a.frequency_hz == b.frequency_hz);
+  CHECK(a.source_level_db == b.source_level_db);
+  CHECK(a.pulse_length_s == b.pulse_length_s);
+  CHECK(a.chirp_bandwidth_hz == b.chirp_bandwidth_hz);
+  CHECK(a.array_length_m == b.array_length_m);
+  CHECK(a.array_height_m == b.array_height_m);
+  CHECK(a.depression_deg == b.depression_deg);
+  CHECK(a.max_range_m == b.max_range_m);
+  CHECK(a.bin_size_m == b.bin_size_m);
+  CHECK(a.ping_period_s == b.ping_period_s);
+  CHECK(a.along_track == b.along_track);
+  CHECK(a.along_track_resolution_m == b.along_track_resolution_m);
+  CHECK(a.sample_type == b.sample_type);
+  CHECK(a.tvg == b.tvg);
+  CHECK(a.gain_db == b.gain_db);
+  CHECK(a.bottom_model == b.bottom_model);
+  CHECK(a.lambert_mu_db == b.lambert_mu_db);
+  CHECK(a.speckle == b.speckle);
+  CHECK(a.noise == b.noise);
+  CHECK(a.rays_per_bin == b.rays_per_bin);
+  CHECK(a.along_track_rays == b.along_track_rays);
+}
+
+// The documented pailhas_strip preset (config/sonars/pailhas_strip.yaml, config/reference.yaml).
+render::SonarDesc documented_pailhas_strip() {
+  render::SonarDesc d;
+  d.name = "pailhas_strip";
+  d.frequency_hz = 300e3;
+  d.source_level_db = 210;
+  d.pulse_length_s = 0;
+  d.chirp_bandwidth_hz = 0;
+  d.array_length_m = 0.5;
+  d.array_height_m = 0.006;
+  d.depression_deg = 15;
+  d.max_range_m = 50;
+  d.bin_size_m = 0.05;
+  d.ping_period_s = 0;
+  d.along_track = render::AlongTrackModel::kStrip;
+  d.along_track_resolution_m = 0.05;
+  d.sample_type = render::SampleType::kUint16;
+  d.tvg = std::nullopt;
+  d.gain_db = 0;
+  d.bottom_model = acoustics::BottomModel::kApl;
+  d.lambert_mu_db = -27;
+  d.speckle = true;
+  d.noise = true;
+  d.rays_per_bin = 0;
+  d.along_track_rays = 0;
+  return d;
+}
+
+double deg(double rad) {
+  return rad * 180.0 / std::numbers::pi;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// defaults and keys
+
+TEST_CASE("sonar_loader: absent, empty and null give the pailhas_strip preset") {
+  const auto expect = documented_pailhas_strip();
+  check_same(builtin_sonar("pailhas_strip"), expect);
+  check_same(builtin_sonar(kDefaultSonarPreset), expect);
+  for (const std::string text :
+       {"", "{}\n", "~\n", "# only a comment\n", "preset: pailhas_strip\n", "pailhas_strip\n"}) {
+    INFO("text: " << text);
+    check_same(parse_sonar(text, "s.yaml"), expect);
+  }
+  // a sonar key that is absent from a larger document
+  const Field root = parse_document("other: 1\n", "doc.yaml");
+  check_same(parse_sonar_node(root.child("sonar")), expect);
+}
+
+TEST_CASE("sonar_loader: every key is parsed and converted to SI") {
+  const auto d = parse_sonar(R"(name: test sonar
+preset: sidescan_100khz
+frequency_khz: 123.5
+source_level_db: 201.5
+pulse_length_us: 80
+chirp_bandwidth_khz: 0
+array_length_m: 0.75
+array_height_m: 0.03
+depression_deg: 22.5
+max_range_m: 80
+bin_size_cm: 4
+ping_period_s: 0.25
+along_track: strip
+along_track_resolution_cm: 7.5
+sample_type: float32
+tvg: spherical
+gain_db: -12.5
+bottom_model: lambert
+lambert_mu_db: -30
+speckle: false
+noise: false
+rays_per_bin: 3
+along_track_rays: 9
+)",
+                             "full.yaml");
+  CHECK(d.name == "test sonar");
+  CHECK(d.frequency_hz == 123500.0);
+  CHECK(d.source_level_db == 201.5);
+  CHECK(d.pulse_length_s == 80e-6);
+  CHECK(d.chirp_bandwidth_hz == 0.0);
+  CHECK(d.array_length_m == 0.75);
+  CHECK(d.array_height_m == 0.03);
+  CHECK(d.depression_deg == 22.5);
+  CHECK(d.max_range_m == 80.0);
+  CHECK(d.bin_size_m == 0.04);
+  CHECK(d.ping_period_s == 0.25);
+  CHECK(d.along_track == render::AlongTrackModel::kStrip);
+  CHECK(d.along_track_resolution_m == 0.075);
+  CHECK(d.sample_type == render::SampleType::kFloat32);
+  CHECK(d.tvg == acoustics::TvgLaw::kSpherical);
+  CHECK(d.gain_db == -12.5);
+  CHECK(d.bottom_model == acoustics::BottomModel::kLambert);
+  CHECK(d.lambert_mu_db == -30.0);
+  CHECK_FALSE(d.speckle);
+  CHECK_FALSE(d.noise);
+  CHECK(d.rays_per_bin == 3);
+  CHECK(d.along_track_rays == 9);
+
+  // a chirp, in kHz
+  const auto c = parse_sonar("chirp_bandwidth_khz: 20\npulse_length_us: 2500\n", "chirp.yaml");
+  CHECK(c.chirp_bandwidth_hz == 20000.0);
+  CHECK(c.pulse_length_s == 2.5e-3);
+  // integers are numbers too, fractions of kHz and cm convert
+  const auto f = parse_sonar("frequency_khz: 455\nbin_size_cm: 2.5\nmax_range_m: 75.5\n", "f.yaml");
+  CHECK(f.frequency_hz == 455000.0);
+  CHECK(f.bin_size_m == 0.025);
+  CHECK(f.max_range_m == 75.5);
+}
+
+TEST_CASE("sonar_loader: every word of the enumerated keys") {
+  const auto at = [](const std::string& key, const std::string& word) {
+    return parse_sonar(key + ": " + word + "\n", "w.yaml");
+  };
+  CHECK(at("along_track", "beam").along_track == render::AlongTrackModel::kBeam);
+  CHECK(at("along_track", "strip").along_track == render::AlongTrackModel::kStrip);
+  CHECK(at("sample_type", "uint8").sample_type == render::SampleType::kUint8);
+  CHECK(at("sample_type", "uint16").sample_type == render::SampleType::kUint16);
+  CHECK(at("sample_type", "float32").sample_type == render::SampleType::kFloat32);
+  CHECK(at("tvg", "auto").tvg == std::nullopt);
+  CHECK(at("tvg", "area").tvg == acoustics::TvgLaw::kArea);
+  CHECK(at("tvg", "point").tvg == acoustics::TvgLaw::kPoint);
+  CHECK(at("tvg", "spherical").tvg == acoustics::TvgLaw::kSpherical);
+  CHECK(at("bottom_model", "apl").bottom_model == acoustics::BottomModel::kApl);
+  CHECK(at("bottom_model", "lambert").bottom_model == acoustics::BottomModel::kLambert);
+  CHECK(at("speckle", "false").speckle == false);
+  CHECK(at("speckle", "True").speckle == true);
+  CHECK(at("noise", "FALSE").noise == false);
+  // tvg auto overrides a preset's explicit law (none has one today: set it, then reset it)
+  CHECK(parse_sonar("tvg: area\n", "t.yaml").tvg == acoustics::TvgLaw::kArea);
+}
+
+// ---------------------------------------------------------------------------------------------
+// built-in presets
+
+TEST_CASE("sonar_loader: the built-in presets are the files of config/sonars, embedded") {
+  CHECK(builtin_sonar_names() == kPresetNames);
+  REQUIRE(builtin_sonar_presets().size() == kPresetNames.size());
+  // every YAML file of config/sonars is a listed preset (no file forgotten in CMakeLists.txt)
+  std::vector<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(SONARLOOP_SOURCE_DIR "/config/sonars")) {
+    if (e.path().extension() == ".yaml") files.push_back(e.path().stem().string());
+  }
+  std::sort(files.begin(), files.end());
+  auto listed = kPresetNames;
+  std::sort(listed.begin(), listed.end());
+  CHECK(files == listed);
+  // the embedded text is the file's text (the build regenerates it when a file changes)
+  for (const auto& [name, text] : builtin_sonar_presets()) {
+    INFO(name);
+    CHECK(text == read_file(SONARLOOP_SOURCE_DIR "/config/sonars/" + name + ".yaml"));
+  }
+}
+
+TEST_CASE("sonar_loader: each preset loads, is complete and named, and round-trips") {
+  for (const auto& [name, text] : builtin_sonar_presets()) {
+    INFO(name);
+    const auto d = builtin_sonar(name);
+    CHECK(d.name == name);
+    // the preset sets every key but preset (so it does not depend on SonarDesc's defaults)
+    const Field root = parse_document(text, name);
+    for (const auto& key : kKeys) {
+      INFO(key);
+      CHECK(root.has(key) == (key != "preset"));
+    }
+    // as a file, as text, by name as a scalar node, and written back out
+    check_same(load_sonar(SONARLOOP_SOURCE_DIR "/config/sonars/" + name + ".yaml"), d);
+    check_same(parse_sonar(text, name + ".yaml"), d);
+    check_same(parse_sonar(name, "by-name.yaml"), d);
+    const std::string yaml = format_sonar_yaml(d);
+    INFO(yaml);
+    check_same(parse_sonar(yaml, "written.yaml"), d);
+    CHECK(format_sonar_yaml(parse_sonar(yaml, "written.yaml")) == yaml);
+    // indented, as under a scenario's sonar: key
+    const std::string nested = "sonar:\n" + format_sonar_yaml(d, 2);
+    check_same(parse_sonar_node(parse_document(nested, "nested.yaml").child("sonar")), d);
+    // the renderer accepts it
+    CHECK_NOTHROW(render::make_sonar_setup(d, scene::WaterDesc{}));
+  }
+}
+
+TEST_CASE("sonar_loader: the presets' documented numbers") {
+  // (c = 1500 m/s, as in the presets' comments)
+  scene::WaterDesc water;
+  struct Row {
+    std::string name;
+    double freq_hz, length_m, range_m, bin_m, chirp_hz;
+    render::AlongTrackModel model;
+    int samples;
+    double horizontal_one_way_deg, vertical_deg;
+  };
+  const std::vector<Row> rows = {
+      {"sidescan_100khz", 100e3, 1.2, 150, 0.10, 0, render::AlongTrackModel::kBeam, 1500, 0.634,
+       49.1},
+      {"sidescan_450khz", 450e3, 0.8, 50, 0.03, 0, render::AlongTrackModel::kBeam, 1666, 0.211,
+       34.35},
+      {"sas_3cm", 100e3, 1.0, 75, 0.03, 30e3, render::AlongTrackModel::kStrip, 2500, 0.761, 49.1},
+      {"pailhas_strip", 300e3, 0.5, 50, 0.05, 0, render::AlongTrackModel::kStrip, 1000, 0.508,
+       43.3},
+  };
+  for (const auto& r : rows) {
+    INFO(r.name);
+    const auto d = builtin_sonar(r.name);
+    CHECK(d.frequency_hz == r.freq_hz);
+    CHECK(d.array_length_m == r.length_m);
+    CHECK(d.max_range_m == r.range_m);
+    CHECK(d.bin_size_m == r.bin_m);
+    CHECK(d.chirp_bandwidth_hz == r.chirp_hz);
+    CHECK(d.along_track == r.model);
+    const double c = kNominalSoundSpeed_m_s;
+    CHECK(deg(acoustics::beamwidth_3db_one_way_rad(d.array_length_m, c / d.frequency_hz)) ==
+          Approx(r.horizontal_one_way_deg).margin(0.001));
+    CHECK(deg(acoustics::beamwidth_3db_one_way_rad(d.array_height_m, c / d.frequency_hz)) ==
+          Approx(r.vertical_deg).margin(0.05));
+    const auto setup = render::make_sonar_setup(d, water);
+    CHECK(setup.bins == r.samples);
+    if (d.along_track == render::AlongTrackModel::kStrip) {
+      CHECK(setup.along_track_resolution_m == d.bin_size_m);  // isotropic pixels
+    }
+    // range resolution: one bin for the auto CW pulse; c/(2B) = 2.5 cm for the SAS chirp
+    const double expect_res = r.chirp_hz > 0 ? setup.sound_speed_m_s / (2 * r.chirp_hz) : r.bin_m;
+    CHECK(setup.range_resolution_m == Approx(expect_res).epsilon(1e-12));
+  }
+  // the 100 kHz beam: 1.2 m along track at 150 m (two-way width), as documented
+  const auto s100 = builtin_sonar("sidescan_100khz");
+  CHECK(150 * acoustics::beamwidth_3db_two_way_rad(1.2, 1500 / s100.frequency_hz) ==
+        Approx(1.196).margin(0.001));
+}
+
+TEST_CASE("sonar_loader: a preset with overrides") {
+  const auto base = builtin_sonar("sidescan_450khz");
+  auto d = parse_sonar("preset: sidescan_450khz\nmax_range_m: 30\ngain_db: 6\n", "o.yaml");
+  auto expect = base;
+  expect.max_range_m = 30;
+  expect.gain_db = 6;
+  check_same(d, expect);
+  // the name: the preset's unless given; empty = the preset's
+  CHECK(parse_sonar("preset: sas_3cm\n", "a.yaml").name == "sas_3cm");
+  CHECK(parse_sonar("preset: sas_3cm\nname: my sas\n", "a.yaml").name == "my sas");
+  CHECK(parse_sonar("preset: sas_3cm\nname: \"\"\n", "a.yaml").name == "sas_3cm");
+  CHECK(parse_sonar("bin_size_cm: 2\n", "a.yaml").name == "pailhas_strip");
+  // key order does not matter: preset after the overrides
+  check_same(parse_sonar("gain_db: 6\nmax_range_m: 30\npreset: sidescan_450khz\n", "o.yaml"),
+             expect);
+  // switching a strip preset to a beam
+  const auto beam = parse_sonar("along_track: beam\n", "b.yaml");
+  CHECK(beam.along_track == render::AlongTrackModel::kBeam);
+  CHECK(beam.frequency_hz == 300e3);
+}
+
+// ---------------------------------------------------------------------------------------------
+// validation
+
+TEST_CASE("sonar_loader: unknown presets list the available names") {
+  auto i = expect_error("preset: sidescan_100\n", "preset",
+                        {"'sidescan_100' is not a sonar preset", "(line 1, column 9)",
+                         "allowed: sidescan_100khz, sidescan_450khz, sas_3cm, pailhas_strip"});
+  CHECK(i.suggestion == "sidescan_100khz");
+  // a preset name as the whole node: a map is allowed too
+  i = expect_error("sas3cm\n", "", {"'sas3cm' is not a sonar preset", "or a map of sonar keys"});
+  CHECK(i.suggestion == "sas_3cm");
+  i = expect_error("preset: [a]\n", "preset", {"is not a sonar preset name"});
+  i = expect_error("preset: ~\n", "preset", {"has no value"});
+  // by name, from code
+  try {
+    builtin_sonar("pailhas");
+    FAIL("accepted");
+  } catch (const ConfigError& e) {
+    const std::string msg = e.what();
+    CHECK(msg.rfind("<built-in sonars>: preset: 'pailhas' is not a sonar preset; allowed: "
+                    "sidescan_100khz, sidescan_450khz, sas_3cm, pailhas_strip",
+                    0) == 0);
+  }
+  CHECK_THROWS_AS(builtin_sonar(""), ConfigError);
+}
+
+TEST_CASE("sonar_loader: unknown keys, with suggestions") {
+  auto i = expect_error("frequency_hz: 100000\n", "frequency_hz",
+                        {"unknown key 'frequency_hz'",
+                         "allowed: name, preset, frequency_khz, source_level_db, pulse_length_us",
+                         "rays_per_bin, along_track_rays", "(did you mean 'frequency_khz'?)"});
+  i = expect_error("bin_size_m: 0.05\n", "bin_size_m", {"(did you mean 'bin_size_cm'?)"});
+  i = expect_error("depresion_deg: 10\n", "depresion_deg", {"(did you mean 'depression_deg'?)"});
+  i = expect_error("beam_pattern: sinc\n", "beam_pattern", {"unknown key 'beam_pattern'"});
+  CHECK(i.suggestion.empty());
+  // every unknown key is listed
+  try {
+    parse_sonar("zz1: 1\nfrequency_khz: 100\nzz2: 2\n", "two.yaml");
+    FAIL("accepted");
+  } catch (const ConfigError& e) {
+    REQUIRE(e.issues().size() == 2);
+    CHECK(e.issues()[0].path == "zz1");
+    CHECK(e.issues()[1].path == "zz2");
+  }
+}
+
+TEST_CASE("sonar_loader: wrong types") {
+  expect_error("frequency_khz: abc\n", "frequency_khz", {"'abc' is not a number", "50 .. 1000"});
+  expect_error("frequency_khz: '300'\n", "frequency_khz", {"is a quoted string, not a number"});
+  expect_error("frequency_khz: .nan\n", "frequency_khz", {"is not a finite number"});
+  expect_error("frequency_khz: [300]\n", "frequency_khz", {"is not a number"});
+  expect_error("max_range_m:\n", "max_range_m", {"has no value"});
+  expect_error("speckle: yes\n", "speckle", {"'yes' is not true or false"});
+  expect_error("noise: 1\n", "noise", {"true or false"});
+  expect_error("rays_per_bin: 2.5\n", "rays_per_bin", {"'2.5' is not an integer", "0 .. 64"});
+  expect_error("along_track_rays: abc\n", "along_track_rays", {"an integer 0 .. 256"});
+  expect_error("along_track: [beam]\n", "along_track", {"beam, strip"});
+  auto i = expect_error("along_track: beams\n", "along_track",
+                        {"'beams' is not a known along-track model", "allowed: beam, strip"});
+  CHECK(i.suggestion == "beam");
+  i = expect_error("sample_type: uint32\n", "sample_type",
+                   {"is not a sample type", "allowed: uint8, uint16, float32"});
+  CHECK(i.suggestion == "uint16");
+  expect_error("tvg: 30log\n", "tvg",
+               {"is not a TVG law", "allowed: auto, area, point, spherical"});
+  expect_error("bottom_model: apl-uw\n", "bottom_model",
+               {"is not a bottom model", "allowed: apl, lambert"});
+  expect_error("name: [a, b]\n", "name", {"is not text"});
+  expect_error("name: ~\n", "name", {"has no value"});
+  // the whole node
+  expect_error("[1, 2]\n", "", {"is not a sonar preset name or a map", "pailhas_strip"});
+  expect_error("- frequency_khz: 100\n", "", {"is not a sonar preset name or a map"});
+  // syntax errors and duplicate keys
+  expect_error("frequency_khz: [100\n", "", {"YAML syntax error"});
+  expect_error("gain_db: 1\ngain_db: 2\n", "gain_db", {"duplicate key 'gain_db'"});
+}
+
+TEST_CASE("sonar_loader: out-of-range values name the key, value and range") {
+  struct Case {
+    std::string key;
+    std::string value;
+    std::string allowed;
+  };
+  const std::vector<Case> cases = {
+      {"frequency_khz", "49.9", "50 .. 1000"},
+      {"frequency_khz", "1000.5", "50 .. 1000"},
+      {"source_level_db", "149", "150 .. 250"},
+      {"source_level_db", "251", "150 .. 250"},
+      {"pulse_length_us", "-1", "0 .. 10000 (0 = auto)"},
+      {"pulse_length_us", "10001", "0 .. 10000 (0 = auto)"},
+      {"chirp_bandwidth_khz", "-5", "0 .. 500 (0 = CW)"},
+      {"chirp_bandwidth_khz", "501", "0 .. 500 (0 = CW)"},
+      {"array_length_m", "0.019", "0.02 .. 10"},
+      {"array_length_m", "11", "0.02 .. 10"},
+      {"array_height_m", "0.004", "0.005 .. 1"},
+      {"array_height_m", "1.5", "0.005 .. 1"},
+      {"depression_deg", "-1", "0 .. 60"},
+      {"depression_deg", "61", "0 .. 60"},
+      {"max_range_m", "0.5", "1 .. 1000"},
+      {"max_range_m", "1001", "1 .. 1000"},
+      {"bin_size_cm", "0.9", "1 .. 100"},
+      {"bin_size_cm", "101", "1 .. 100"},
+      {"ping_period_s", "-0.1", "0 .. 10 (0 = auto)"},
+      {"ping_period_s", "11", "0 .. 10 (0 = auto)"},
+      {"along_track_resolution_cm", "-1", "0 .. 500 (0 = bin_size_cm)"},
+      {"along_track_resolution_cm", "501", "0 .. 500 (0 = bin_size_cm)"},
+      {"gain_db", "-101", "-100 .. 100"},
+      {"gain_db", "100.5", "-100 .. 100"},
+      {"lambert_mu_db", "-61", "-60 .. -4.97"},
+      {"lambert_mu_db", "-4.9", "-60 .. -4.97"},
+      {"rays_per_bin", "-1", "an integer 0 .. 64"},
+      {"rays_per_bin", "65", "an integer 0 .. 64"},
+      {"along_track_rays", "-1", "an integer 0 .. 256"},
+      {"along_track_rays", "257", "an integer 0 .. 256"},
+  };
+  for (const auto& c : cases) {
+    INFO(c.key << ": " << c.value);
+    const auto i = expect_error(c.key + ": " + c.value + "\n", c.key,
+                                {c.value + " is out of range", "allowed: " + c.allowed,
+                                 "(line 1, column " + std::to_string(c.key.size() + 3) + ")"});
+    CHECK(i.line == 1);
+  }
+  // each end is allowed
+  CHECK_NOTHROW(parse_sonar("frequency_khz: 1000\nlambert_mu_db: -4.97\ngain_db: -100\n", "e"));
+  CHECK_NOTHROW(parse_sonar(
+      "frequency_khz: 50\narray_length_m: 10\narray_height_m: 1\ndepression_deg: 60\n"
+      "ping_period_s: 10\npulse_length_us: 10000\nrays_per_bin: 64\nalong_track_rays: 256\n"
+      "along_track_resolution_cm: 500\nsource_level_db: 250\nlambert_mu_db: -60\n",
+      "e"));
+  CHECK_NOTHROW(parse_sonar("max_range_m: 1\nbin_size_cm: 1\n", "e"));
+  CHECK_NOTHROW(parse_sonar("max_range_m: 1000\nbin_size_cm: 100\n", "e"));
+}
+
+TEST_CASE("sonar_loader: range bin below the maximum range, at most 65535 samples") {
+  expect_error("max_range_m: 1\nbin_size_cm: 100\n", "bin_size_cm",
+               {"100 is not below max_range_m 1", "allowed: below max_range_m (100 cm)"});
+  CHECK(parse_sonar("max_range_m: 1\nbin_size_cm: 99\n", "b").bin_size_m == 0.99);
+
+  const auto i = expect_error(
+      "max_range_m: 1000\nbin_size_cm: 1\n", "bin_size_cm",
+      {"1 gives 100000 samples per side over max_range_m 1000",
+       "allowed: >= 1.526 for max_range_m 1000 (at most 65535 samples per side, the XTF "
+       "WORD-safe limit)",
+       "(line 2, column 14)"});
+  CHECK(i.line == 2);
+  // the suggested bound works
+  const auto ok = parse_sonar("max_range_m: 1000\nbin_size_cm: 1.526\n", "b");
+  CHECK(render::make_sonar_setup(ok, scene::WaterDesc{}).bins <= kMaxSamplesPerSide);
+  // exactly 65535 samples is allowed, 65536 is not
+  const auto edge = parse_sonar("max_range_m: 655.35\nbin_size_cm: 1\n", "b");
+  CHECK(render::make_sonar_setup(edge, scene::WaterDesc{}).bins == 65535);
+  expect_error("max_range_m: 655.36\nbin_size_cm: 1\n", "bin_size_cm", {"gives 65536 samples"});
+}
+
+TEST_CASE("sonar_loader: a chirp's range resolution spans at most 4 bins") {
+  // pailhas_strip has 5 cm bins: c/(2B) <= 20 cm needs B >= 3.75 kHz
+  expect_error("chirp_bandwidth_khz: 2\n", "chirp_bandwidth_khz",
+               {"2 gives a range resolution c/(2B) = 37.5 cm (c = 1500 m/s), coarser than 4 range "
+                "bins of bin_size_cm 5",
+                "allowed: 0 (CW), or >= 3.75 for bin_size_cm 5; or larger bins (bin_size_cm >= "
+                "9.375)"});
+  CHECK(parse_sonar("chirp_bandwidth_khz: 3.75\n", "c").chirp_bandwidth_hz == 3750.0);
+  CHECK(parse_sonar("chirp_bandwidth_khz: 2\nbin_size_cm: 9.375\n", "c").bin_size_m == 0.09375);
+  // both set: the bandwidth is named
+  expect_error("chirp_bandwidth_khz: 2\nbin_size_cm: 9\n", "chirp_bandwidth_khz",
+               {"coarser than 4 range bins of bin_size_cm 9"});
+  // the hint's bound is sufficient after rounding
+  expect_error("chirp_bandwidth_khz: 1\nbin_size_cm: 3\n", "chirp_bandwidth_khz",
+               {">= 6.25 for bin_size_cm 3"});
+  CHECK_NOTHROW(parse_sonar("chirp_bandwidth_khz: 6.25\nbin_size_cm: 3\n", "c"));
+  // a chirp's band stays above 0 Hz: B < 2 f
+  expect_error("frequency_khz: 50\narray_length_m: 1\nchirp_bandwidth_khz: 100\n",
+               "chirp_bandwidth_khz",
+               {"100 is not below twice frequency_khz 50", "allowed: 0 (CW), or below 100"});
+  CHECK_NOTHROW(
+      parse_sonar("frequency_khz: 50\narray_length_m: 1\nchirp_bandwidth_khz: 99.5\n", "c"));
+}
+
+TEST_CASE("sonar_loader: the array must be longer than a wavelength") {
+  // at 50 kHz the wavelength is 1500/50e3 = 3 cm
+  expect_error("frequency_khz: 50\narray_length_m: 0.03\n", "array_length_m",
+               {"0.03 is not longer than the wavelength c/f = 0.03 m at frequency_khz 50 "
+                "(c = 1500 m/s): the array would form no beam",
+                "allowed: more than 0.03 for frequency_khz 50"});
+  expect_error("frequency_khz: 50\narray_length_m: 0.02\n", "array_length_m", {"no beam"});
+  CHECK_NOTHROW(parse_sonar("frequency_khz: 50\narray_length_m: 0.031\n", "a"));
+  CHECK_NOTHROW(parse_sonar("frequency_khz: 75.1\narray_length_m: 0.02\n", "a"));
+  expect_error("frequency_khz: 75\narray_length_m: 0.02\n", "array_length_m",
+               {"more than 0.02 for frequency_khz 75"});
+}
+
+TEST_CASE("sonar_loader: load_sonar reads a file and names it in errors") {
+  sonarloop::testing::TempDir dir("config-sonar-loader");
+  {
+    std::ofstream out(dir.file("towfish.yaml"));
+    out << "# a towfish\npreset: sidescan_100khz\nname: towfish\nmax_range_m: 100\n";
+  }
+  const auto d = load_sonar(dir.file("towfish.yaml"));
+  CHECK(d.name == "towfish");
+  CHECK(d.max_range_m == 100);
+  CHECK(d.frequency_hz == 100e3);
+  try {
+    load_sonar(dir.file("missing.yaml"));
+    FAIL("loaded a missing file");
+  } catch (const ConfigError& e) {
+    CHECK(std::string(e.what()).rfind(dir.file("missing.yaml") + ": (file): no such file", 0) == 0);
+  }
+  {
+    std::ofstream out(dir.file("bad.yaml"));
+    out << "preset: sidescan_100khz\nfrequency_khz: 20\n";
+  }
+  try {
+    load_sonar(dir.file("bad.yaml"));
+    FAIL("accepted 20 kHz");
+  } catch (const ConfigError& e) {
+    CHECK(std::string(e.what()).rfind(
+              dir.file("bad.yaml") + ": frequency_khz: 20 is out of range (line 2, column 16)",
+              0) == 0);
+  }
+}
+
+TEST_CASE("sonar_loader: format_sonar_yaml quotes names and round-trips unusual values") {
+  auto d = builtin_sonar("sidescan_450khz");
+  d.name = "a: \"quoted\" # name\\ with\ttab";
+  d.tvg = acoustics::TvgLaw::kPoint;
+  d.pulse_length_s = 123.456e-6;
+  d.frequency_hz = 123456.789;
+  d.bin_size_m = 0.0123;
+  const std::string yaml = format_sonar_yaml(d, 4);
+  INFO(yaml);
+  CHECK(yaml.rfind("    name: ", 0) == 0);
+  const auto back = parse_sonar("\n" + yaml, "w.yaml");
+  CHECK(back.name == d.name);
+  CHECK(back.tvg == acoustics::TvgLaw::kPoint);
+  CHECK(back.pulse_length_s == Approx(d.pulse_length_s).epsilon(1e-15));
+  CHECK(back.frequency_hz == Approx(d.frequency_hz).epsilon(1e-15));
+  CHECK(back.bin_size_m == Approx(d.bin_size_m).epsilon(1e-15));
+
+  // the shortest text that converts back exactly: 0.07 m is "7" cm, although 0.07 * 100 is
+  // 7.000000000000001 in binary
+  auto s = builtin_sonar("pailhas_strip");
+  s.bin_size_m = 0.07;
+  s.along_track_resolution_m = 0.07;
+  s.pulse_length_s = 70e-6;
+  s.frequency_hz = 123.4e3;
+  const std::string short_yaml = format_sonar_yaml(s);
+  INFO(short_yaml);
+  CHECK(contains(short_yaml, "\nbin_size_cm: 7\n"));
+  CHECK(contains(short_yaml, "\nalong_track_resolution_cm: 7\n"));
+  CHECK(contains(short_yaml, "\npulse_length_us: 70\n"));
+  CHECK(contains(short_yaml, "\nfrequency_khz: 123.4\n"));
+  check_same(parse_sonar(short_yaml, "short.yaml"), s);
+  // and messages quote values the same way
+  expect_error("bin_size_cm: 7\nchirp_bandwidth_khz: 1\n", "chirp_bandwidth_khz",
+               {"coarser than 4 range bins of bin_size_cm 7"});
+}
+
+// ---------------------------------------------------------------------------------------------
+// seeded randomized test (style.md habit 22)
+
+namespace {
+
+// How a key's value is read, for drawing valid values and corrupting them.
+enum class Kind { kReal, kInt, kBool, kWord, kText };
+
+struct KeySpec {
+  std::string key;
+  Kind kind;
+  double lo = 0, hi = 0;           // kReal, kInt
+  std::vector<std::string> words;  // kWord
+};
+
+const std::vector<KeySpec>& key_specs() {
+  static const std::vector<KeySpec> specs = {
+      {"name", Kind::kText, 0, 0, {}},
+      {"frequency_khz", Kind::kReal, 50, 1000, {}},
+      {"source_level_db", Kind::kReal, 150, 250, {}},
+      {"pulse_length_us", Kind::kReal, 0, 10000, {}},
+      {"chirp_bandwidth_khz", Kind::kReal, 0, 500, {}},
+      {"array_length_m", Kind::kReal, 0.02, 10, {}},
+      {"array_height_m", Kind::kReal, 0.005, 1, {}},
+      {"depression_deg", Kind::kReal, 0, 60, {}},
+      {"max_range_m", Kind::kReal, 1, 1000, {}},
+      {"bin_size_cm", Kind::kReal, 1, 100, {}},
+      {"ping_period_s", Kind::kReal, 0, 10, {}},
+      {"along_track", Kind::kWord, 0, 0, {"beam", "strip"}},
+      {"along_track_resolution_cm", Kind::kReal, 0, 500, {}},
+      {"sample_type", Kind::kWord, 0, 0, {"uint8", "uint16", "float32"}},
+      {"tvg", Kind::kWord, 0, 0, {"auto", "area", "point", "spherical"}},
+      {"gain_db", Kind::kReal, -100, 100, {}},
+      {"bottom_model", Kind::kWord, 0, 0, {"apl", "lambert"}},
+      {"lambert_mu_db", Kind::kReal, -60, -4.97, {}},
+      {"speckle", Kind::kBool, 0, 0, {}},
+      {"noise", Kind::kBool, 0, 0, {}},
+      {"rays_per_bin", Kind::kInt, 0, 64, {}},
+      {"along_track_rays", Kind::kInt, 0, 256, {}},
+  };
+  return specs;
+}
+
+std::string real_text(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+// Applies one key (its YAML text already validated by the generator) to the expected SonarDesc.
+void apply(render::SonarDesc& d, const std::string& key, const std::string& text) {
+  const auto num = [&] { return std::stod(text); };
+  if (key == "name") {
+    if (!text.empty()) d.name = text;
+  } else if (key == "frequency_khz") {
+    d.frequency_hz = num() * 1e3;
+  } else if (key == "source_level_db") {
+    d.source_level_db = num();
+  } else if (key == "pulse_length_us") {
+    d.pulse_length_s = num() / 1e6;
+  } else if (key == "chirp_bandwidth_khz") {
+    d.chirp_bandwidth_hz = num() * 1e3;
+  } else if (key == "array_length_m") {
+    d.array_length_m = num();
+  } else if (key == "array_height_m") {
+    d.array_height_m = num();
+  } else if (key == "depression_deg") {
+    d.depression_deg = num();
+  } else if (key == "max_range_m") {
+    d.max_range_m = num();
+  } else if (key == "bin_size_cm") {
+    d.bin_size_m = num() / 100;
+  } else if (key == "ping_period_s") {
+    d.ping_period_s = num();
+  } else if (key == "along_track") {
+    d.along_track =
+        text == "beam" ? render::AlongTrackModel::kBeam : render::AlongTrackModel::kStrip;
+  } else if (key == "along_track_resolution_cm") {
+    d.along_track_resolution_m = num() / 100;
+  } else if (key == "sample_type") {
+    d.sample_type = text == "uint8"    ? render::SampleType::kUint8
+                    : text == "uint16" ? render::SampleType::kUint16
+                                       : render::SampleType::kFloat32;
+  } else if (key == "tvg") {
+    if (text == "auto") d.tvg = std::nullopt;
+    if (text == "area") d.tvg = acoustics::TvgLaw::kArea;
+    if (text == "point") d.tvg = acoustics::TvgLaw::kPoint;
+    if (text == "spherical") d.tvg = acoustics::TvgLaw::kSpherical;
+  } else if (key == "gain_db") {
+    d.gain_db = num();
+  } else if (key == "bottom_model") {
+    d.bottom_model =
+        text == "apl" ? acoustics::BottomModel::kApl : acoustics::BottomModel::kLambert;
+  } else if (key == "lambert_mu_db") {
+    d.lambert_mu_db = num();
+  } else if (key == "speckle") {
+    d.speckle = text == "true";
+  } else if (key == "noise") {
+    d.noise = text == "true";
+  } else if (key == "rays_per_bin") {
+    d.rays_per_bin = std::stoi(text);
+  } else if (key == "along_track_rays") {
+    d.along_track_rays = std::stoi(text);
+  }
+}
+
+// The cross-field rules, written independently of the loader (sonar_loader.h).
+bool rules_hold(const render::SonarDesc& d) {
+  const double c = 1500.0;
+  if (!(d.bin_size_m < d.max_range_m)) return false;
+  if (std::floor(d.max_range_m / d.bin_size_m + 1e-9) > 65535) return false;
+  if (!(c / d.frequency_hz < d.array_length_m)) return false;
+  if (d.chirp_bandwidth_hz > 0) {
+    if (!(d.chirp_bandwidth_hz < 2 * d.frequency_hz)) return false;
+    if (c / (2 * d.chirp_bandwidth_hz) > 4 * d.bin_size_m) return false;
+  }
+  return true;
+}
+
+bool near(double a, double b) {
+  return a == b || std::fabs(a - b) <= 1e-14 * std::max(std::fabs(a), std::fabs(b));
+}
+
+void check_near(const render::SonarDesc& a, const render::SonarDesc& b) {
+  CHECK(a.name == b.name);
+  CHECK(near(a.frequency_hz, b.frequency_hz));
+  CHECK(a.source_level_db == b.source_level_db);
+  CHECK(near(a.pulse_length_s, b.pulse_length_s));
+  CHECK(near(a.chirp_bandwidth_hz, b.chirp_bandwidth_hz));
+  CHECK(a.array_length_m == b.array_length_m);
+  CHECK(a.array_height_m == b.array_height_m);
+  CHECK(a.depression_deg == b.depression_deg);
+  CHECK(a.max_range_m == b.max_range_m);
+  CHECK(near(a.bin_size_m, b.bin_size_m));
+  CHECK(a.ping_period_s == b.ping_period_s);
+  CHECK(a.along_track == b.along_track);
+  CHECK(near(a.along_track_resolution_m, b.along_track_resolution_m));
+  CHECK(a.sample_type == b.sample_type);
+  CHECK(a.tvg == b.tvg);
+  CHECK(a.gain_db == b.gain_db);
+  CHECK(a.bottom_model == b.bottom_model);
+  CHECK(a.lambert_mu_db == b.lambert_mu_db);
+  CHECK(a.speckle == b.speckle);
+  CHECK(a.noise == b.noise);
+  CHECK(a.rays_per_bin == b.rays_per_bin);
+  CHECK(a.along_track_rays == b.along_track_rays);
+}
+
+struct Entry {
+  std::string key;
+  std::string text;
+};
+
+class SonarGenerator {
+ public:
+  explicit SonarGenerator(std::uint64_t sample) : rng_(20240612, RngStream::kDataset, sample) {}
+
+  Rng& rng() { return rng_; }
+
+  // A random valid sonar map (entries in random order) and the SonarDesc it describes.
+  void generate(std::vector<Entry>& entries, render::SonarDesc& expect) {
+    for (int attempt = 0;; ++attempt) {
+      REQUIRE(attempt < 1000);
+      entries.clear();
+      std::string preset(kDefaultSonarPreset);
+      if (rng_.uniform() < 0.6) {
+        preset = kPresetNames[rng_.below(kPresetNames.size())];
+        entries.push_back({"preset", preset});
+      }
+      expect = builtin_sonar(preset);
+      const double p_key = rng_.uniform();  // how many keys this sample sets
+      for (const auto& spec : key_specs()) {
+        if (rng_.uniform() >= p_key) continue;
+        const std::string text = draw(spec);
+        entries.push_back({spec.key, text});
+        apply(expect, spec.key, unquoted(text));
+      }
+      if (!rules_hold(expect)) continue;
+      for (std::size_t i = entries.size(); i > 1; --i)
+        std::swap(entries[i - 1], entries[rng_.below(i)]);
+      return;
+    }
+  }
+
+ private:
+  static std::string unquoted(const std::string& t) {
+    return t.size() >= 2 && t.front() == '"' ? t.substr(1, t.size() - 2) : t;
+  }
+
+  std::string draw(const KeySpec& s) {
+    switch (s.kind) {
+      case Kind::kReal: {
+        const double u = rng_.uniform();
+        if (u < 0.1) return real_text(s.lo);
+        if (u < 0.2) return real_text(s.hi);
+        if (u < 0.4)
+          return std::to_string(static_cast<int>(std::ceil(s.lo)) +
+                                static_cast<int>(rng_.below(static_cast<std::uint64_t>(
+                                    std::floor(s.hi) - std::ceil(s.lo) + 1))));
+        if (s.lo > 0 && s.hi / s.lo >= 100) {
+          return real_text(std::min(
+              s.hi, std::max(s.lo, std::exp(rng_.uniform(std::log(s.lo), std::log(s.hi))))));
+        }
+        return real_text(rng_.uniform(s.lo, s.hi));
+      }
+      case Kind::kInt:
+        return std::to_string(
+            static_cast<int>(s.lo) +
+            static_cast<int>(rng_.below(static_cast<std::uint64_t>(s.hi - s.lo + 1))));
+      case Kind::kBool:
+        return rng_.uniform() < 0.5 ? "true" : "false";
+      case Kind::kWord:
+        return s.words[rng_.below(s.words.size())];
+      case Kind::kText: {
+        const double u = rng_.uniform();
+        if (u < 0.2) return "\"\"";
+        if (u < 0.6) return "sonar " + std::to_string(rng_.below(1000));
+        return "\"x: " + std::to_string(rng_.below(1000)) + "\"";
+      }
+    }
+    return "";
+  }
+
+  Rng rng_;
+};
+
+// block ("key: value" lines, indented) or flow ("{key: value, ...}") text of a map
+std::string map_text(const std::vector<Entry>& entries, bool flow, int indent) {
+  std::string out;
+  if (flow) {
+    out = "{";
+    for (std::size_t i = 0; i < entries.size(); ++i)
+      out += (i ? ", " : "") + entries[i].key + ": " + entries[i].text;
+    return out + "}\n";
+  }
+  const std::string pad(static_cast<std::size_t>(indent), ' ');
+  for (const auto& e : entries)
+    out += pad + e.key + ": " + e.text + "\n";
+  return out;
+}
+
+// Parses a sonar map either as a standalone document or under `sonar:` in a larger one.
+render::SonarDesc parse_either(const std::vector<Entry>& entries, bool nested, bool flow,
+                               const std::string& file) {
+  if (!nested) return parse_sonar(entries.empty() && !flow ? "" : map_text(entries, flow, 0), file);
+  const std::string text = "other: 1\nsonar:" + (flow ? " " + map_text(entries, true, 0)
+                                                      : "\n" + map_text(entries, false, 2));
+  const Field root = parse_document(text, file);
+  return parse_sonar_node(root.child("sonar"));
+}
+
+}  // namespace
+
+TEST_CASE("sonar_loader: random valid sonars round-trip, corruptions are rejected") {
+  constexpr int kSamples = 400;
+  constexpr int kCorruptionsPerSample = 6;
+  int corruptions = 0;
+  int with_chirp = 0;
+  for (int sample = 0; sample < kSamples; ++sample) {
+    SonarGenerator gen(static_cast<std::uint64_t>(sample));
+    std::vector<Entry> entries;
+    render::SonarDesc expect;
+    gen.generate(entries, expect);
+    const bool nested = gen.rng().uniform() < 0.5;
+    const bool flow = gen.rng().uniform() < 0.3;
+    const std::string file = "random-" + std::to_string(sample) + ".yaml";
+    INFO("sample " << sample << " (nested " << nested << ", flow " << flow << "):\n"
+                   << map_text(entries, flow, 0));
+    render::SonarDesc got;
+    try {
+      got = parse_either(entries, nested, flow, file);
+    } catch (const ConfigError& e) {
+      FAIL("valid sonar rejected: " << e.what());
+    }
+    check_near(got, expect);
+    if (got.chirp_bandwidth_hz > 0) ++with_chirp;
+    // written out and read back, bit for bit
+    check_same(parse_sonar(format_sonar_yaml(got), "written.yaml"), got);
+    // the renderer accepts every sonar the loader accepts
+    try {
+      const auto setup = render::make_sonar_setup(got, scene::WaterDesc{});
+      CHECK(setup.bins >= 1);
+      CHECK(setup.bins <= kMaxSamplesPerSide);
+    } catch (const std::exception& e) {
+      FAIL("make_sonar_setup rejected a loaded sonar: " << e.what());
+    }
+
+    for (int c = 0; c < kCorruptionsPerSample; ++c) {
+      std::vector<Entry> bad = entries;
+      std::string expect_path;
+      std::string what;
+      Rng& rng = gen.rng();
+      const double u = rng.uniform();
+      if (u < 0.15 || bad.empty()) {
+        bad.push_back({"zz_unknown", "1"});
+        expect_path = "zz_unknown";
+        what = "unknown key";
+      } else if (u < 0.25) {
+        // a rule broken on purpose with both of its keys set
+        switch (rng.below(4)) {
+          case 0:
+            bad.push_back({"max_range_m", "1000"});
+            bad.push_back({"bin_size_cm", "1"});
+            expect_path = "bin_size_cm";
+            break;
+          case 1:
+            bad.push_back({"frequency_khz", "50"});
+            bad.push_back({"array_length_m", "0.025"});
+            expect_path = "array_length_m";
+            break;
+          case 2:
+            bad.push_back({"bin_size_cm", "2"});
+            bad.push_back({"chirp_bandwidth_khz", "5"});
+            expect_path = "chirp_bandwidth_khz";
+            break;
+          default:
+            bad.push_back({"frequency_khz", "60"});
+            bad.push_back({"array_length_m", "1"});
+            bad.push_back({"bin_size_cm", "5"});
+            bad.push_back({"chirp_bandwidth_khz", "130"});
+            expect_path = "chirp_bandwidth_khz";
+            break;
+        }
+        // the new entries replace any earlier ones of the same key (no duplicate keys)
+        std::vector<Entry> dedup;
+        for (std::size_t i = 0; i < bad.size(); ++i) {
+          bool later = false;
+          for (std::size_t j = i + 1; j < bad.size(); ++j)
+            later = later || bad[j].key == bad[i].key;
+          if (!later) dedup.push_back(bad[i]);
+        }
+        bad = dedup;
+        what = "broken rule at " + expect_path;
+      } else {
+        Entry& e = bad[rng.below(bad.size())];
+        expect_path = e.key;
+        std::vector<std::string> options;
+        if (e.key == "preset") {
+          options = {"zz_no_such_preset", "[1, 2]", "{a: 1}", "~", "sidescan"};
+        } else {
+          const auto& specs = key_specs();
+          const auto it = std::find_if(specs.begin(), specs.end(),
+                                       [&](const KeySpec& s) { return s.key == e.key; });
+          REQUIRE(it != specs.end());
+          switch (it->kind) {
+            case Kind::kReal:
+              options = {"abc",
+                         ".nan",
+                         ".inf",
+                         "'5'",
+                         "[1, 2]",
+                         "{a: 1}",
+                         "~",
+                         "1e999",
+                         "true",
+                         real_text(it->lo - 0.5 * std::max(std::fabs(it->lo), 1.0)),
+                         real_text(it->hi + 0.5 * std::max(std::fabs(it->hi), 1.0)),
+                         real_text(it->hi + 1e-9 * std::max(std::fabs(it->hi), 1.0))};
+              break;
+            case Kind::kInt:
+              options = {"1.5", "abc", "-1",         std::to_string(static_cast<int>(it->hi) + 1),
+                         "~",   "[1]", "99999999999"};
+              break;
+            case Kind::kBool:
+              options = {"yes", "1", "~", "[true]", "'true'"};
+              break;
+            case Kind::kWord:
+              options = {"zz_word", "[1, 2]", "{a: 1}", "~", "7"};
+              break;
+            case Kind::kText:
+              options = {"[1, 2]", "{a: 1}", "~"};
+              break;
+          }
+        }
+        e.text = options[rng.below(options.size())];
+        what = "set " + e.key + " to '" + e.text + "'";
+      }
+      INFO("corruption: " << what << "\n" << map_text(bad, flow, 0));
+      ++corruptions;
+      try {
+        parse_either(bad, nested, flow, file);
+        FAIL("corrupted sonar accepted");
+      } catch (const ConfigError& e) {
+        const std::string msg = e.what();
+        INFO("message: " << msg);
+        CHECK(msg.rfind(file + ": ", 0) == 0);
+        CHECK(contains(msg, "; allowed: "));
+        CHECK(e.first().path == (nested ? "sonar." : "") + expect_path);
+      } catch (const std::exception& e) {
+        FAIL("not a ConfigError: " << e.what());
+      }
+    }
+  }
+  CHECK(corruptions == kSamples * kCorruptionsPerSample);
+  CHECK(with_chirp > 10);  // the chirp rules were exercised by valid samples too
+}
+
+TEST_CASE("sonar_loader: random byte edits give a sonar or a ConfigError, never a crash") {
+  const std::string full = format_sonar_yaml(builtin_sonar("sas_3cm")) + "preset: sas_3cm\n";
+  const std::string alphabet = "{}[]:,-#&*!|>'\"%@`? \n\t.0123456789abxyz~";
+  Rng rng(11, RngStream::kDataset, 7);
+  int accepted = 0;
+  int rejected = 0;
+  for (int k = 0; k < 3000; ++k) {
+    std::string text = full;
+    const auto edits = 1 + rng.below(4);
+    for (std::uint64_t j = 0; j < edits && !text.empty(); ++j) {
+      const std::size_t pos = rng.below(text.size());
+      const char c = alphabet[rng.below(alphabet.size())];
+      switch (rng.below(3)) {
+        case 0:
+          text[pos] = c;
+          break;
+        case 1:
+          text.erase(pos, 1 + rng.below(5));
+          break;
+        default:
+          text.insert(pos, 1, c);
+          break;
+      }
+    }
+    try {
+      const auto d = parse_sonar(text, "edited.yaml");
+      CHECK_NOTHROW(render::make_sonar_setup(d, scene::WaterDesc{}));
+      ++accepted;
+    } catch (const ConfigError& e) {
+      ++rejected;
+      const std::string msg = e.what();
+      if (msg.rfind("edited.yaml: ", 0) != 0 || !contains(msg, "; allowed: ")) {
+        FAIL("badly formed message: " << msg);
+      }
+    } catch (const std::exception& e) {
+      FAIL("not a ConfigError: " << e.what() << "\n" << text);
+    }
+  }
+  CHECK(accepted > 0);
+  CHECK(rejected > 0);
+}

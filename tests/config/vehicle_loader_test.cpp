@@ -1,0 +1,1639 @@
+// Tests of the vehicle loader (config/loader/vehicle_loader.h): every key and its unit
+// conversion, the defaults (VehicleDesc{}), each trajectory kind and depth mode, keys of other
+// kinds and modes, every validation rule (per-key ranges, validate()'s cross-field rules, the
+// path limits, the seabed extent in altitude mode), the shipped scenarios' vehicles,
+// config/reference.yaml, and a seeded randomized test (style.md habit 22) that round-trips random
+// valid vehicles and checks that corruptions are always rejected with a ConfigError.
+#include "config/loader/vehicle_loader.h"
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "config/loader/scenario_loader.h"
+#include "sim/core/rng.h"
+#include "sim/scene/scene.h"
+#include "sim/vehicle/nav_sensor.h"
+#include "sim/vehicle/path.h"
+#include "sim/vehicle/trajectory.h"
+#include "tests/support/temp_dir.h"
+
+using sonarloop::Rng;
+using sonarloop::RngStream;
+using sonarloop::Vec2;
+using namespace sonarloop::config;
+namespace vehicle = sonarloop::vehicle;
+namespace scene = sonarloop::scene;
+using vehicle::DepthMode;
+using vehicle::TrajectoryKind;
+using vehicle::TurnDirection;
+using vehicle::VehicleDesc;
+
+namespace {
+
+// The loader's conversion: one multiplication by the double nearest π/180.
+double rad(double deg) {
+  return deg * (std::numbers::pi / 180.0);
+}
+
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Checks a ConfigError's form: "<file>: <path>: ...; allowed: ...", the first issue at `path`,
+// and that every `parts` string is in the message.
+ConfigIssue check_error(const ConfigError& e, const std::string& file, const std::string& path,
+                        const std::vector<std::string>& parts) {
+  const std::string msg = e.what();
+  INFO("message: " << msg);
+  const std::string shown = path.empty() ? "(top level)" : path;
+  CHECK(msg.rfind(file + ": " + shown + ": ", 0) == 0);
+  CHECK(e.first().path == path);
+  CHECK(contains(msg, "; allowed: "));
+  for (const auto& p : parts)
+    CHECK(contains(msg, p));
+  return e.first();
+}
+
+// Parses `yaml` as a standalone vehicle "vehicle.yaml", which must fail.
+ConfigIssue expect_error(const std::string& yaml, const std::string& path,
+                         const std::vector<std::string>& parts = {}) {
+  INFO("yaml:\n" << yaml);
+  try {
+    parse_vehicle(yaml, "vehicle.yaml");
+  } catch (const ConfigError& e) {
+    return check_error(e, "vehicle.yaml", path, parts);
+  }
+  FAIL("accepted");
+  return {};
+}
+
+// Parses `yaml` as a scenario "scenario.yaml", which must fail.
+ConfigIssue expect_scenario_error(const std::string& yaml, const std::string& path,
+                                  const std::vector<std::string>& parts = {}) {
+  INFO("yaml:\n" << yaml);
+  try {
+    parse_scenario(yaml, "scenario.yaml");
+  } catch (const ConfigError& e) {
+    return check_error(e, "scenario.yaml", path, parts);
+  }
+  FAIL("accepted");
+  return {};
+}
+
+VehicleDesc parse_ok(const std::string& yaml) {
+  INFO("yaml:\n" << yaml);
+  try {
+    return parse_vehicle(yaml, "vehicle.yaml");
+  } catch (const ConfigError& e) {
+    FAIL("rejected: " << e.what());
+  }
+  return {};
+}
+
+// exact comparison, field by field
+void check_same(const VehicleDesc& a, const VehicleDesc& b) {
+  const auto& ta = a.trajectory;
+  const auto& tb = b.trajectory;
+  CHECK(ta.kind == tb.kind);
+  CHECK(ta.start.north_m == tb.start.north_m);
+  CHECK(ta.start.east_m == tb.start.east_m);
+  CHECK(ta.start_heading == tb.start_heading);
+  CHECK(ta.straight_length_m == tb.straight_length_m);
+  REQUIRE(ta.waypoints.size() == tb.waypoints.size());
+  for (std::size_t i = 0; i < ta.waypoints.size(); ++i) {
+    CHECK(ta.waypoints[i].north_m == tb.waypoints[i].north_m);
+    CHECK(ta.waypoints[i].east_m == tb.waypoints[i].east_m);
+  }
+  CHECK(ta.lawnmower.origin.north_m == tb.lawnmower.origin.north_m);
+  CHECK(ta.lawnmower.origin.east_m == tb.lawnmower.origin.east_m);
+  CHECK(ta.lawnmower.first_leg_heading == tb.lawnmower.first_leg_heading);
+  CHECK(ta.lawnmower.leg_length_m == tb.lawnmower.leg_length_m);
+  CHECK(ta.lawnmower.line_spacing_m == tb.lawnmower.line_spacing_m);
+  CHECK(ta.lawnmower.legs == tb.lawnmower.legs);
+  CHECK(ta.lawnmower.first_turn == tb.lawnmower.first_turn);
+  CHECK(ta.speed_m_s == tb.speed_m_s);
+  CHECK(ta.max_turn_rate_rad_s == tb.max_turn_rate_rad_s);
+  CHECK(ta.depth.mode == tb.depth.mode);
+  CHECK(ta.depth.depth_m == tb.depth.depth_m);
+  CHECK(ta.depth.altitude_m == tb.depth.altitude_m);
+  CHECK(ta.depth.max_climb_rate_m_s == tb.depth.max_climb_rate_m_s);
+  CHECK(ta.depth.look_ahead_m == tb.depth.look_ahead_m);
+  CHECK(ta.depth.min_depth_m == tb.depth.min_depth_m);
+  CHECK(ta.depth.profile_step_m == tb.depth.profile_step_m);
+  CHECK(ta.depth.vertical_smoothing_m == tb.depth.vertical_smoothing_m);
+  CHECK(ta.sway.amplitude_m == tb.sway.amplitude_m);
+  CHECK(ta.sway.period_s == tb.sway.period_s);
+  CHECK(ta.sway.phase == tb.sway.phase);
+  CHECK(ta.sway.yaw_coupling == tb.sway.yaw_coupling);
+  CHECK(ta.attitude.roll_gain == tb.attitude.roll_gain);
+  CHECK(ta.attitude.max_roll == tb.attitude.max_roll);
+  CHECK(ta.attitude.roll_time_constant_s == tb.attitude.roll_time_constant_s);
+  CHECK(ta.attitude.pitch_gain == tb.attitude.pitch_gain);
+  CHECK(ta.attitude.max_pitch == tb.attitude.max_pitch);
+  const auto& na = a.nav;
+  const auto& nb = b.nav;
+  CHECK(na.position_noise_sd_m == nb.position_noise_sd_m);
+  CHECK(na.position_drift_m_per_sqrt_s == nb.position_drift_m_per_sqrt_s);
+  CHECK(na.heading_bias == nb.heading_bias);
+  CHECK(na.heading_noise_sd == nb.heading_noise_sd);
+  CHECK(na.heading_drift_rad_per_sqrt_s == nb.heading_drift_rad_per_sqrt_s);
+  CHECK(na.attitude_noise_sd == nb.attitude_noise_sd);
+  CHECK(na.speed_noise_sd_m_s == nb.speed_noise_sd_m_s);
+  CHECK(na.speed_scale_factor_error == nb.speed_scale_factor_error);
+  CHECK(na.yaw_rate_noise_sd_rad_s == nb.yaw_rate_noise_sd_rad_s);
+  CHECK(na.depth_noise_sd_m == nb.depth_noise_sd_m);
+  CHECK(na.altitude_noise_sd_m == nb.altitude_noise_sd_m);
+  CHECK(na.noise_step_s == nb.noise_step_s);
+  CHECK(na.drift_step_s == nb.drift_step_s);
+}
+
+// The keys of each map, in the documented order.
+const std::vector<std::string> kTrajectoryKeys = {
+    "kind",        "start_m",   "heading_deg", "length_m",
+    "waypoints_m", "lawnmower", "speed_m_s",   "max_turn_rate_deg_s",
+    "depth",       "sway",      "attitude"};
+const std::vector<std::string> kLawnmowerKeys = {
+    "origin_m", "first_leg_heading_deg", "leg_length_m", "line_spacing_m", "legs", "first_turn"};
+const std::vector<std::string> kDepthKeys = {
+    "mode",         "depth_m",     "altitude_m",           "max_climb_rate_m_s",
+    "look_ahead_m", "min_depth_m", "vertical_smoothing_m", "profile_step_m"};
+const std::vector<std::string> kSwayKeys = {"amplitude_m", "period_s", "phase_deg", "yaw_coupling"};
+const std::vector<std::string> kAttitudeKeys = {"roll_gain", "max_roll_deg", "roll_time_constant_s",
+                                                "pitch_gain", "max_pitch_deg"};
+const std::vector<std::string> kNavKeys = {"position_noise_m",
+                                           "position_drift_m_per_sqrt_s",
+                                           "heading_bias_deg",
+                                           "heading_noise_deg",
+                                           "heading_drift_deg_per_sqrt_s",
+                                           "attitude_noise_deg",
+                                           "speed_noise_m_s",
+                                           "speed_scale_error",
+                                           "yaw_rate_noise_deg_s",
+                                           "depth_noise_m",
+                                           "altitude_noise_m",
+                                           "noise_step_s",
+                                           "drift_step_s"};
+
+// a flat seabed 30 m down, for planning in altitude mode
+double flat_seabed(double, double) {
+  return 30.0;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// defaults and keys
+
+TEST_CASE("vehicle_loader: absent, empty and null give VehicleDesc{}") {
+  const VehicleDesc def;
+  CHECK(vehicle::validate(def).empty());
+  for (const std::string yaml : {"", "{}", "trajectory:\nnav:\n", "trajectory: {}\nnav: {}\n",
+                                 "trajectory: {depth: {}, sway: ~, attitude: {}}\n"}) {
+    INFO(yaml);
+    check_same(parse_ok(yaml), def);
+  }
+  // in a scenario: no vehicle key, a null one, an empty map
+  for (const std::string yaml : {"seed: 1\n", "vehicle:\n", "vehicle: {}\n", "vehicle: ~\n"}) {
+    INFO(yaml);
+    check_same(parse_scenario(yaml, "s.yaml").vehicle, def);
+  }
+  // the default kind's keys without a kind key
+  const auto v = parse_ok("trajectory: {length_m: 10, heading_deg: 90}\n");
+  CHECK(v.trajectory.kind == TrajectoryKind::kStraight);
+  CHECK(v.trajectory.straight_length_m == 10);
+  CHECK(v.trajectory.start_heading == rad(90));
+}
+
+TEST_CASE("vehicle_loader: every key is parsed and converted to SI") {
+  SECTION("straight, constant depth, sway, attitude and nav") {
+    const auto v = parse_ok(R"(
+trajectory:
+  kind: straight
+  start_m: [-12.5, 7.25]
+  heading_deg: 33.5
+  length_m: 321.5
+  speed_m_s: 1.75
+  max_turn_rate_deg_s: 12.5
+  depth:
+    mode: depth
+    depth_m: 17.25
+    profile_step_m: 0.25
+  sway:
+    amplitude_m: 0.75
+    period_s: 12.5
+    phase_deg: -45
+    yaw_coupling: 0.5
+  attitude:
+    roll_gain: -1.5
+    max_roll_deg: 25
+    roll_time_constant_s: 2.5
+    pitch_gain: 1.25
+    max_pitch_deg: 35
+nav:
+  position_noise_m: 0.3
+  position_drift_m_per_sqrt_s: 0.07
+  heading_bias_deg: -1.5
+  heading_noise_deg: 0.25
+  heading_drift_deg_per_sqrt_s: 0.02
+  attitude_noise_deg: 0.1
+  speed_noise_m_s: 0.015
+  speed_scale_error: -0.003
+  yaw_rate_noise_deg_s: 0.04
+  depth_noise_m: 0.05
+  altitude_noise_m: 0.12
+  noise_step_s: 0.02
+  drift_step_s: 0.5
+)");
+    VehicleDesc e;
+    auto& t = e.trajectory;
+    t.kind = TrajectoryKind::kStraight;
+    t.start = {-12.5, 7.25};
+    t.start_heading = rad(33.5);
+    t.straight_length_m = 321.5;
+    t.speed_m_s = 1.75;
+    t.max_turn_rate_rad_s = rad(12.5);
+    t.depth.mode = DepthMode::kConstantDepth;
+    t.depth.depth_m = 17.25;
+    t.depth.profile_step_m = 0.25;
+    t.sway = {0.75, 12.5, rad(-45), 0.5};
+    t.attitude = {-1.5, rad(25), 2.5, 1.25, rad(35)};
+    auto& n = e.nav;
+    n.position_noise_sd_m = 0.3;
+    n.position_drift_m_per_sqrt_s = 0.07;
+    n.heading_bias = rad(-1.5);
+    n.heading_noise_sd = rad(0.25);
+    n.heading_drift_rad_per_sqrt_s = rad(0.02);
+    n.attitude_noise_sd = rad(0.1);
+    n.speed_noise_sd_m_s = 0.015;
+    n.speed_scale_factor_error = -0.003;
+    n.yaw_rate_noise_sd_rad_s = rad(0.04);
+    n.depth_noise_sd_m = 0.05;
+    n.altitude_noise_sd_m = 0.12;
+    n.noise_step_s = 0.02;
+    n.drift_step_s = 0.5;
+    check_same(v, e);
+    // the conversion of a few in plain numbers
+    CHECK(v.trajectory.start_heading == Approx(0.584685299418).epsilon(1e-11));
+    CHECK(v.trajectory.max_turn_rate_rad_s == Approx(0.218166156499).epsilon(1e-11));
+    CHECK(v.nav.heading_bias == Approx(-0.0261799387799).epsilon(1e-11));
+  }
+  SECTION("waypoints, altitude mode") {
+    const auto v = parse_ok(R"(
+trajectory:
+  kind: waypoints
+  start_m: [1, 2]
+  heading_deg: 270
+  waypoints_m: [[10, 2], [10.5, 40], [-20, 40.25]]
+  depth:
+    mode: altitude
+    altitude_m: 6.5
+    max_climb_rate_m_s: 0.75
+    look_ahead_m: 80
+    min_depth_m: 2.5
+    vertical_smoothing_m: 8
+    profile_step_m: 1
+)");
+    VehicleDesc e;
+    auto& t = e.trajectory;
+    t.kind = TrajectoryKind::kWaypoints;
+    t.start = {1, 2};
+    t.start_heading = rad(270);
+    t.waypoints = {{10, 2}, {10.5, 40}, {-20, 40.25}};
+    t.depth.mode = DepthMode::kAltitude;
+    t.depth.altitude_m = 6.5;
+    t.depth.max_climb_rate_m_s = 0.75;
+    t.depth.look_ahead_m = 80;
+    t.depth.min_depth_m = 2.5;
+    t.depth.vertical_smoothing_m = 8;
+    t.depth.profile_step_m = 1;
+    check_same(v, e);
+  }
+  SECTION("lawnmower") {
+    const auto v = parse_ok(R"(
+trajectory:
+  kind: lawnmower
+  lawnmower:
+    origin_m: [-100, 25]
+    first_leg_heading_deg: 90
+    leg_length_m: 150
+    line_spacing_m: 35
+    legs: 6
+    first_turn: port
+)");
+    VehicleDesc e;
+    auto& m = e.trajectory.lawnmower;
+    e.trajectory.kind = TrajectoryKind::kLawnmower;
+    m.origin = {-100, 25};
+    m.first_leg_heading = rad(90);
+    m.leg_length_m = 150;
+    m.line_spacing_m = 35;
+    m.legs = 6;
+    m.first_turn = TurnDirection::kPort;
+    check_same(v, e);
+    // without a lawnmower map: the LawnmowerDesc defaults
+    VehicleDesc plain;
+    plain.trajectory.kind = TrajectoryKind::kLawnmower;
+    check_same(parse_ok("trajectory: {kind: lawnmower}\n"), plain);
+    check_same(parse_ok("trajectory: {kind: lawnmower, lawnmower: {}}\n"), plain);
+  }
+  SECTION("the bounds themselves are accepted and convert to validate()'s bounds") {
+    const auto v = parse_ok(R"(
+trajectory:
+  speed_m_s: 20
+  max_turn_rate_deg_s: 114.59155902616465
+  attitude: {roll_gain: -10, max_roll_deg: 89.99999999999999, pitch_gain: 10,
+             roll_time_constant_s: 3600}
+nav: {heading_bias_deg: -180, noise_step_s: 1e-9, drift_step_s: 3600,
+      speed_scale_error: -0.49999999999999994}
+)");
+    CHECK(v.trajectory.max_turn_rate_rad_s == 2.0);
+    CHECK(v.trajectory.attitude.max_roll < std::numbers::pi / 2);
+    CHECK(v.nav.heading_bias == -std::numbers::pi);
+    CHECK(parse_ok("nav: {heading_bias_deg: 180}\n").nav.heading_bias == std::numbers::pi);
+    CHECK(vehicle::validate(v).empty());
+  }
+}
+
+TEST_CASE("vehicle_loader: each kind plans the path it describes") {
+  const double speed = 2.0;
+  SECTION("straight") {
+    const auto v = parse_ok("trajectory: {start_m: [5, -5], heading_deg: 90, length_m: 100}\n");
+    const vehicle::Trajectory tr(v.trajectory);
+    CHECK(tr.length_m() == Approx(100));
+    CHECK(tr.duration_s() == Approx(100 / speed));
+    const auto end = tr.path().at(100).position_NE;
+    CHECK(end.x() == Approx(5).margin(1e-9));
+    CHECK(end.y() == Approx(95));
+  }
+  SECTION("waypoints") {
+    const auto v = parse_ok(
+        "trajectory: {kind: waypoints, start_m: [0, 0], waypoints_m: [[100, 0], [100, 100]]}\n");
+    const vehicle::Trajectory tr(v.trajectory);
+    // straight to the first, then a starboard turn of radius 20 m and a tangent line
+    CHECK(tr.turn_radius_m() == Approx(20));
+    CHECK(tr.length_m() > 200);
+    CHECK(tr.length_m() < 200 + 20 * std::numbers::pi);
+  }
+  SECTION("lawnmower") {
+    const auto v = parse_ok(R"(
+trajectory:
+  kind: lawnmower
+  lawnmower: {leg_length_m: 80, line_spacing_m: 20, legs: 3}
+  max_turn_rate_deg_s: 15
+  depth: {mode: altitude, altitude_m: 7.5}
+)");
+    const vehicle::Trajectory tr(v.trajectory, flat_seabed);
+    const double r = 2.0 / rad(15);
+    CHECK(tr.turn_radius_m() == Approx(r));
+    CHECK(tr.length_m() == Approx(3 * 80 + 2 * vehicle::u_turn_length_m(20, r)));
+    CHECK(tr.min_altitude_m() == Approx(7.5));
+    // leg 1 runs south along east = 20 (starboard of a north-going leg 0)
+    const auto mid =
+        tr.state_at(sonarloop::from_seconds((80 + 40 + vehicle::u_turn_length_m(20, r)) / speed));
+    CHECK(mid.leg == 1);
+    CHECK(mid.pose.position_W.y() == Approx(20));
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// keys of other kinds and modes, unknown keys, wrong types, ranges
+
+TEST_CASE("vehicle_loader: keys of another kind or depth mode are rejected") {
+  struct Case {
+    std::string kind;
+    std::string key;
+    std::string value;
+    std::string owners;
+  };
+  const std::vector<Case> cases = {
+      {"waypoints", "length_m", "10", "kind straight"},
+      {"lawnmower", "length_m", "10", "kind straight"},
+      {"straight", "waypoints_m", "[[1, 2]]", "kind waypoints"},
+      {"lawnmower", "waypoints_m", "[[1, 2]]", "kind waypoints"},
+      {"straight", "lawnmower", "{legs: 2}", "kind lawnmower"},
+      {"waypoints", "lawnmower", "{}", "kind lawnmower"},
+      {"lawnmower", "start_m", "[1, 2]", "kind straight and waypoints"},
+      {"lawnmower", "heading_deg", "10", "kind straight and waypoints"},
+  };
+  for (const auto& c : cases) {
+    INFO(c.kind << " " << c.key);
+    std::string yaml = "trajectory:\n  kind: " + c.kind + "\n  " + c.key + ": " + c.value + "\n";
+    if (c.kind == "waypoints") yaml += "  waypoints_m: [[5, 5]]\n";
+    const auto i =
+        expect_error(yaml, "trajectory." + c.key,
+                     {"is a key of " + c.owners + ", but this trajectory is of kind " + c.kind,
+                      "(line 3", "allowed: the keys of kind " + c.kind + ": kind, "});
+    if (c.kind == "lawnmower" && (c.key == "start_m" || c.key == "heading_deg")) {
+      CHECK(contains(i.problem, "a lawnmower starts at lawnmower.origin_m"));
+    }
+  }
+  // the default kind says so
+  expect_error("trajectory: {waypoints_m: [[1, 2]]}\n", "trajectory.waypoints_m",
+               {"this trajectory is of kind straight (the default; set kind to choose another)",
+                "allowed: the keys of kind straight: kind, start_m, heading_deg, length_m, "
+                "speed_m_s, max_turn_rate_deg_s, depth, sway, attitude"});
+  // depth modes
+  for (const std::string key : {"altitude_m", "max_climb_rate_m_s", "look_ahead_m", "min_depth_m",
+                                "vertical_smoothing_m"}) {
+    INFO(key);
+    expect_error("trajectory:\n  depth:\n    mode: depth\n    " + key + ": 1\n",
+                 "trajectory.depth." + key,
+                 {"is a key of mode altitude, but this depth is of mode depth (line 4",
+                  "allowed: the keys of mode depth: mode, depth_m, profile_step_m"});
+    expect_error("trajectory:\n  depth:\n    " + key + ": 1\n", "trajectory.depth." + key,
+                 {"of mode depth (the default; set mode to choose another)"});
+  }
+  expect_error("trajectory:\n  depth: {mode: altitude, depth_m: 10}\n", "trajectory.depth.depth_m",
+               {"is a key of mode depth, but this depth is of mode altitude",
+                "allowed: the keys of mode altitude: mode, altitude_m, max_climb_rate_m_s, "
+                "look_ahead_m, min_depth_m, vertical_smoothing_m, profile_step_m"});
+  // profile_step_m belongs to both modes
+  CHECK(parse_ok("trajectory: {depth: {mode: altitude, profile_step_m: 2}}\n")
+            .trajectory.depth.profile_step_m == 2);
+  CHECK(parse_ok("trajectory: {depth: {mode: depth, profile_step_m: 2}}\n")
+            .trajectory.depth.profile_step_m == 2);
+}
+
+TEST_CASE("vehicle_loader: unknown keys, at every level, with suggestions") {
+  auto i =
+      expect_error("trajectori: {}\n", "trajectori",
+                   {"unknown key 'trajectori' (line 1, column 1)", "allowed: trajectory, nav"});
+  CHECK(i.suggestion == "trajectory");
+  i = expect_error("trajectory:\n  knd: straight\n", "trajectory.knd",
+                   {"allowed: kind, start_m, heading_deg, length_m, waypoints_m, lawnmower, "
+                    "speed_m_s, max_turn_rate_deg_s, depth, sway, attitude"});
+  CHECK(i.suggestion == "kind");
+  i = expect_error("trajectory:\n  speed_kn: 4\n", "trajectory.speed_kn", {"unknown key"});
+  i = expect_error("trajectory:\n  kind: lawnmower\n  lawnmower: {leg_lenght_m: 5}\n",
+                   "trajectory.lawnmower.leg_lenght_m",
+                   {"allowed: origin_m, first_leg_heading_deg, leg_length_m, line_spacing_m, "
+                    "legs, first_turn"});
+  CHECK(i.suggestion == "leg_length_m");
+  i = expect_error("trajectory: {depth: {altitude: 5}}\n", "trajectory.depth.altitude",
+                   {"allowed: mode, depth_m, altitude_m, max_climb_rate_m_s, look_ahead_m, "
+                    "min_depth_m, vertical_smoothing_m, profile_step_m"});
+  CHECK(i.suggestion == "altitude_m");
+  i = expect_error("trajectory: {sway: {amplitude: 1}}\n", "trajectory.sway.amplitude",
+                   {"allowed: amplitude_m, period_s, phase_deg, yaw_coupling"});
+  CHECK(i.suggestion == "amplitude_m");
+  i = expect_error("trajectory: {attitude: {max_roll: 10}}\n", "trajectory.attitude.max_roll",
+                   {"allowed: roll_gain, max_roll_deg, roll_time_constant_s, pitch_gain, "
+                    "max_pitch_deg"});
+  CHECK(i.suggestion == "max_roll_deg");
+  i = expect_error("nav: {heading_noise_rad: 0.1}\n", "nav.heading_noise_rad",
+                   {"allowed: position_noise_m, position_drift_m_per_sqrt_s, heading_bias_deg"});
+  CHECK(i.suggestion == "heading_noise_deg");
+  // unknown keys are reported before values are read, all of a map together
+  try {
+    parse_vehicle("nav: {bogus: 1, heading_bias_deg: 999, other: 2}\n", "v.yaml");
+    FAIL("accepted");
+  } catch (const ConfigError& e) {
+    REQUIRE(e.issues().size() == 2);
+    CHECK(e.issues()[0].path == "nav.bogus");
+    CHECK(e.issues()[1].path == "nav.other");
+  }
+  // in a scenario, under vehicle.
+  i = expect_scenario_error("vehicle:\n  nav:\n    depth_noise: 1\n", "vehicle.nav.depth_noise",
+                            {"(line 3, column 5)", "(did you mean 'depth_noise_m'?)"});
+}
+
+TEST_CASE("vehicle_loader: wrong types") {
+  expect_error("- 1\n", "", {"is not a map", "allowed: a map with trajectory, nav"});
+  expect_error("trajectory: 5\n", "trajectory", {"'5' is not a map", "allowed: a map with kind"});
+  expect_error("nav: [1]\n", "nav", {"is not a map"});
+  auto i = expect_error(
+      "trajectory: {kind: lawnmover}\n", "trajectory.kind",
+      {"'lawnmover' is not a trajectory kind", "allowed: straight, waypoints, lawnmower"});
+  CHECK(i.suggestion == "lawnmower");
+  expect_error("trajectory: {kind: [straight]}\n", "trajectory.kind",
+               {"is not a trajectory kind name"});
+  expect_error("trajectory: {kind: }\n", "trajectory.kind", {"has no value"});
+  i = expect_error("trajectory: {depth: {mode: altitud}}\n", "trajectory.depth.mode",
+                   {"'altitud' is not a depth mode", "allowed: altitude, depth"});
+  CHECK(i.suggestion == "altitude");
+  expect_error("trajectory: {depth: 5}\n", "trajectory.depth", {"is not a map"});
+  expect_error("trajectory: {kind: lawnmower, lawnmower: {first_turn: right}}\n",
+               "trajectory.lawnmower.first_turn",
+               {"'right' is not a turn direction", "allowed: starboard, port"});
+  expect_error("trajectory: {kind: lawnmower, lawnmower: {legs: 2.5}}\n",
+               "trajectory.lawnmower.legs", {"'2.5' is not an integer", "an integer 1 .. 10000"});
+  expect_error("trajectory: {kind: lawnmower, lawnmower: [1]}\n", "trajectory.lawnmower",
+               {"is not a map"});
+  expect_error("trajectory: {start_m: 5}\n", "trajectory.start_m",
+               {"is a single value, not a list", "a list [north, east] of 2 finite numbers"});
+  expect_error("trajectory: {start_m: [1, 2, 3]}\n", "trajectory.start_m", {"has 3 values"});
+  expect_error("trajectory: {start_m: [a, 2]}\n", "trajectory.start_m[0]", {"'a' is not a number"});
+  expect_error("trajectory: {speed_m_s: '2'}\n", "trajectory.speed_m_s",
+               {"is a quoted string, not a number"});
+  expect_error("trajectory: {speed_m_s: .nan}\n", "trajectory.speed_m_s",
+               {"is not a finite number"});
+  expect_error("trajectory: {heading_deg: .inf}\n", "trajectory.heading_deg",
+               {"is not a finite number", "allowed: any finite number"});
+  expect_error("nav: {position_noise_m: }\n", "nav.position_noise_m", {"has no value"});
+  expect_error("nav: {position_noise_m: true}\n", "nav.position_noise_m", {"is not a number"});
+  // waypoints
+  const std::string w = "trajectory:\n  kind: waypoints\n";
+  expect_error(w, "trajectory.waypoints_m",
+               {"is not set (kind waypoints needs at least one waypoint)",
+                "allowed: a list of at least one [north, east] point"});
+  expect_error(w + "  waypoints_m: []\n", "trajectory.waypoints_m", {"has no waypoints"});
+  expect_error(w + "  waypoints_m:\n", "trajectory.waypoints_m", {"has no waypoints"});
+  expect_error(w + "  waypoints_m: 5\n", "trajectory.waypoints_m", {"is not a list"});
+  expect_error(w + "  waypoints_m: [1, 2]\n", "trajectory.waypoints_m[0]",
+               {"is a single value, not a list"});
+  expect_error(w + "  waypoints_m: [[1, 2], [3]]\n", "trajectory.waypoints_m[1]",
+               {"has 1 value, not 2"});
+  expect_error(w + "  waypoints_m: [[1, 2], [3, .nan]]\n", "trajectory.waypoints_m[1][1]",
+               {"is not a finite number"});
+}
+
+TEST_CASE("vehicle_loader: out-of-range values name the file, key, value and range") {
+  struct Case {
+    std::string yaml;
+    std::string path;
+    std::string value;
+    std::string allowed;
+  };
+  const std::string lm = "trajectory:\n  kind: lawnmower\n  lawnmower:\n    ";
+  const std::string alt = "trajectory:\n  depth:\n    mode: altitude\n    ";
+  const std::vector<Case> cases = {
+      {"trajectory: {length_m: 0}\n", "trajectory.length_m", "0", "> 0"},
+      {"trajectory: {length_m: -5}\n", "trajectory.length_m", "-5", "> 0"},
+      {lm + "leg_length_m: 0\n", "trajectory.lawnmower.leg_length_m", "0", "> 0"},
+      {lm + "line_spacing_m: -1\n", "trajectory.lawnmower.line_spacing_m", "-1", "> 0"},
+      {lm + "legs: 0\n", "trajectory.lawnmower.legs", "0", "an integer 1 .. 10000"},
+      {lm + "legs: 10001\n", "trajectory.lawnmower.legs", "10001", "an integer 1 .. 10000"},
+      {"trajectory: {speed_m_s: 0}\n", "trajectory.speed_m_s", "0", "> 0 and <= 20"},
+      {"trajectory: {speed_m_s: 20.000001}\n", "trajectory.speed_m_s", "20.000001",
+       "> 0 and <= 20"},
+      {"trajectory: {max_turn_rate_deg_s: 0}\n", "trajectory.max_turn_rate_deg_s", "0",
+       "> 0 and <= 114.59155902616465 (2 rad/s)"},
+      {"trajectory: {max_turn_rate_deg_s: 114.59155902616466}\n", "trajectory.max_turn_rate_deg_s",
+       "114.59155902616466", "> 0 and <= 114.59155902616465 (2 rad/s)"},
+      {"trajectory: {depth: {depth_m: -0.1}}\n", "trajectory.depth.depth_m", "-0.1", ">= 0"},
+      {alt + "altitude_m: 0\n", "trajectory.depth.altitude_m", "0", "> 0"},
+      {alt + "max_climb_rate_m_s: 0\n", "trajectory.depth.max_climb_rate_m_s", "0",
+       "> 0 and <= 20"},
+      {alt + "max_climb_rate_m_s: 21\n", "trajectory.depth.max_climb_rate_m_s", "21",
+       "> 0 and <= 20"},
+      {alt + "look_ahead_m: -1\n", "trajectory.depth.look_ahead_m", "-1", ">= 0"},
+      {alt + "min_depth_m: -1\n", "trajectory.depth.min_depth_m", "-1", ">= 0"},
+      {alt + "vertical_smoothing_m: 1001\n", "trajectory.depth.vertical_smoothing_m", "1001",
+       "0 .. 1000"},
+      {alt + "vertical_smoothing_m: -1\n", "trajectory.depth.vertical_smoothing_m", "-1",
+       "0 .. 1000"},
+      {"trajectory: {depth: {profile_step_m: 0.04}}\n", "trajectory.depth.profile_step_m", "0.04",
+       "0.05 .. 10"},
+      {"trajectory: {depth: {profile_step_m: 11}}\n", "trajectory.depth.profile_step_m", "11",
+       "0.05 .. 10"},
+      {"trajectory: {sway: {amplitude_m: -1}}\n", "trajectory.sway.amplitude_m", "-1",
+       ">= 0 (0 = no sway)"},
+      {"trajectory: {sway: {period_s: 0}}\n", "trajectory.sway.period_s", "0", "> 0"},
+      {"trajectory: {sway: {yaw_coupling: 1.5}}\n", "trajectory.sway.yaw_coupling", "1.5",
+       "0 .. 1"},
+      {"trajectory: {sway: {yaw_coupling: -0.5}}\n", "trajectory.sway.yaw_coupling", "-0.5",
+       "0 .. 1"},
+      {"trajectory: {attitude: {roll_gain: 11}}\n", "trajectory.attitude.roll_gain", "11",
+       "-10 .. 10"},
+      {"trajectory: {attitude: {roll_gain: -10.5}}\n", "trajectory.attitude.roll_gain", "-10.5",
+       "-10 .. 10"},
+      {"trajectory: {attitude: {max_roll_deg: 0}}\n", "trajectory.attitude.max_roll_deg", "0",
+       "> 0 and < 90"},
+      {"trajectory: {attitude: {max_roll_deg: 90}}\n", "trajectory.attitude.max_roll_deg", "90",
+       "> 0 and < 90"},
+      {"trajectory: {attitude: {roll_time_constant_s: 3601}}\n",
+       "trajectory.attitude.roll_time_constant_s", "3601", "0 .. 3600 (0 = no lag)"},
+      {"trajectory: {attitude: {roll_time_constant_s: -1}}\n",
+       "trajectory.attitude.roll_time_constant_s", "-1", "0 .. 3600 (0 = no lag)"},
+      {"trajectory: {attitude: {pitch_gain: -0.1}}\n", "trajectory.attitude.pitch_gain", "-0.1",
+       "0 .. 10"},
+      {"trajectory: {attitude: {max_pitch_deg: 95}}\n", "trajectory.attitude.max_pitch_deg", "95",
+       "> 0 and < 90"},
+      {"nav: {position_noise_m: -0.1}\n", "nav.position_noise_m", "-0.1", ">= 0"},
+      {"nav: {position_drift_m_per_sqrt_s: -1}\n", "nav.position_drift_m_per_sqrt_s", "-1", ">= 0"},
+      {"nav: {heading_bias_deg: 180.5}\n", "nav.heading_bias_deg", "180.5", "-180 .. 180"},
+      {"nav: {heading_bias_deg: -181}\n", "nav.heading_bias_deg", "-181", "-180 .. 180"},
+      {"nav: {heading_noise_deg: -1}\n", "nav.heading_noise_deg", "-1", ">= 0"},
+      {"nav: {heading_drift_deg_per_sqrt_s: -1}\n", "nav.heading_drift_deg_per_sqrt_s", "-1",
+       ">= 0"},
+      {"nav: {attitude_noise_deg: -1}\n", "nav.attitude_noise_deg", "-1", ">= 0"},
+      {"nav: {speed_noise_m_s: -1}\n", "nav.speed_noise_m_s", "-1", ">= 0"},
+      {"nav: {speed_scale_error: 0.5}\n", "nav.speed_scale_error", "0.5", "> -0.5 and < 0.5"},
+      {"nav: {speed_scale_error: -0.5}\n", "nav.speed_scale_error", "-0.5", "> -0.5 and < 0.5"},
+      {"nav: {yaw_rate_noise_deg_s: -1}\n", "nav.yaw_rate_noise_deg_s", "-1", ">= 0"},
+      {"nav: {depth_noise_m: -1}\n", "nav.depth_noise_m", "-1", ">= 0"},
+      {"nav: {altitude_noise_m: -1}\n", "nav.altitude_noise_m", "-1", ">= 0"},
+      {"nav: {noise_step_s: 0}\n", "nav.noise_step_s", "0", "1e-09 .. 3600 (at least 1 ns)"},
+      {"nav: {noise_step_s: 3601}\n", "nav.noise_step_s", "3601", "1e-09 .. 3600"},
+      {"nav: {drift_step_s: 1e-10}\n", "nav.drift_step_s", "1e-10", "1e-09 .. 3600"},
+  };
+  for (const auto& c : cases) {
+    INFO(c.path);
+    expect_error(c.yaml, c.path, {c.value + " is out of range (line ", "allowed: " + c.allowed});
+  }
+  // every number key is covered above (or has no bounds)
+  std::vector<std::string> covered;
+  for (const auto& c : cases)
+    covered.push_back(c.path.substr(c.path.rfind('.') + 1));
+  for (const auto* keys : {&kLawnmowerKeys, &kDepthKeys, &kSwayKeys, &kAttitudeKeys, &kNavKeys}) {
+    for (const auto& k : *keys) {
+      if (k == "origin_m" || k == "first_leg_heading_deg" || k == "first_turn" || k == "mode" ||
+          k == "phase_deg") {
+        continue;  // a pair, a word or any finite number
+      }
+      INFO(k);
+      CHECK(std::find(covered.begin(), covered.end(), k) != covered.end());
+    }
+  }
+  // in a scenario the file and the full key path are named
+  expect_scenario_error("seed: 1\nvehicle:\n  trajectory:\n    speed_m_s: 25\n",
+                        "vehicle.trajectory.speed_m_s",
+                        {"25 is out of range (line 4, column 16)", "allowed: > 0 and <= 20"});
+}
+
+TEST_CASE("vehicle_loader: validate()'s cross-field rules become errors at the YAML key") {
+  const std::string w = "trajectory:\n  kind: waypoints\n  start_m: [0, 0]\n  waypoints_m: ";
+  auto i = expect_error(w + "[[0, 0.005]]\n", "trajectory.waypoints_m[0]",
+                        {"a list [0, 0.005] is rejected by the vehicle model: "
+                         "trajectory.waypoints[0] = (0, 0.005): is 0.005 m from the start point",
+                         "allowed: [north, east]; consecutive points (start_m included) at "
+                         "least 0.01 m apart"});
+  CHECK(i.line == 4);
+  expect_error(w + "[[10, 0], [20, 0], [20, 0]]\n", "trajectory.waypoints_m[2]",
+               {"from the previous waypoint"});
+  // every violation, one issue each
+  try {
+    parse_vehicle(w + "[[0, 0], [0, 0.001], [5, 5]]\n", "v.yaml");
+    FAIL("accepted");
+  } catch (const ConfigError& e) {
+    REQUIRE(e.issues().size() == 2);
+    CHECK(e.issues()[0].path == "trajectory.waypoints_m[0]");
+    CHECK(e.issues()[1].path == "trajectory.waypoints_m[1]");
+  }
+  // exactly 0.01 m apart is fine
+  CHECK(parse_ok(w + "[[0, 0.01], [0, 0.02]]\n").trajectory.waypoints.size() == 2);
+}
+
+TEST_CASE("vehicle_loader: the planned path's length and duration limits") {
+  // 10000 legs of 5000 m: 5e7 m, 1e8 profile steps of 0.5 m
+  const std::string big =
+      "trajectory:\n  kind: lawnmower\n  lawnmower: {legs: 10000, leg_length_m: 5000}\n";
+  expect_error(big, "trajectory.depth.profile_step_m",
+               {"the default 0.5 gives 1.01456e+08 profile steps over the planned path of "
+                "5.07282e+07 m",
+                "allowed: >= 2.53641 for this path (at most 2e+07 profile steps), or a shorter "
+                "path"});
+  // with a coarser step it is accepted
+  CHECK(parse_ok(big + "  depth: {profile_step_m: 3}\n").trajectory.lawnmower.legs == 10000);
+  // a mission longer than 1e9 s
+  expect_error("trajectory: {length_m: 2000, speed_m_s: 1e-6}\n", "trajectory.speed_m_s",
+               {"1e-06 gives a mission of 2e+09 s over the planned path of 2000 m",
+                "allowed: >= 2e-06 for this path (missions of at most 1e+09 s)"});
+  // a path of no finite length
+  expect_error("trajectory: {kind: lawnmower, lawnmower: {leg_length_m: 1e308, legs: 10}}\n",
+               "trajectory", {"the planned path has no finite length"});
+}
+
+// ---------------------------------------------------------------------------------------------
+// the path and the seabed extent
+
+TEST_CASE("vehicle_loader: find_path_exit") {
+  const Vec2 lo(-50, -50);
+  const Vec2 hi(50, 50);
+  vehicle::TrajectoryDesc t;
+  SECTION("a line leaves where it crosses the edge (closed form)") {
+    t.start = {-45, 10};
+    t.start_heading = rad(45);
+    t.straight_length_m = 200;
+    const auto exit = find_path_exit(vehicle::plan_path(t), lo, hi);
+    REQUIRE(exit);
+    // east reaches 50 after 40 / sin(45 deg) m
+    CHECK(exit->s_m == Approx(40 * std::sqrt(2.0)));
+    CHECK(exit->position_NE.y() == Approx(50));
+    CHECK(exit->position_NE.x() == Approx(-5));
+    t.straight_length_m = 40 * std::sqrt(2.0) - 1e-9;
+    CHECK_FALSE(find_path_exit(vehicle::plan_path(t), lo, hi));
+  }
+  SECTION("a start outside, an empty box") {
+    t.start = {60, 0};
+    auto exit = find_path_exit(vehicle::plan_path(t), lo, hi);
+    REQUIRE(exit);
+    CHECK(exit->s_m == 0);
+    t.start = {0, 0};
+    exit = find_path_exit(vehicle::plan_path(t), Vec2(1, 1), Vec2(0, 2));
+    REQUIRE(exit);
+    CHECK(exit->s_m == 0);
+  }
+  SECTION("arcs: the first exit, against dense sampling of the path") {
+    Rng rng(5, RngStream::kDataset, 1);
+    int exits = 0;
+    for (int k = 0; k < 40; ++k) {
+      t.kind = TrajectoryKind::kWaypoints;
+      t.start = {rng.uniform(-30, 30), rng.uniform(-30, 30)};
+      t.start_heading = rng.uniform(-4, 4);
+      t.max_turn_rate_rad_s = rng.uniform(0.05, 0.3);
+      t.waypoints.clear();
+      for (int j = 0; j < 4; ++j)
+        t.waypoints.push_back({rng.uniform(-45, 45), rng.uniform(-45, 45)});
+      const auto path = vehicle::plan_path(t);
+      const auto exit = find_path_exit(path, lo, hi);
+      // the reference: the first of 2 cm samples outside
+      std::optional<double> first;
+      for (double s = 0; s <= path.length_m(); s += 0.02) {
+        const Vec2 p = path.at(s).position_NE;
+        if (p.x() < lo.x() || p.x() > hi.x() || p.y() < lo.y() || p.y() > hi.y()) {
+          first = s;
+          break;
+        }
+      }
+      INFO("path " << k << " of length " << path.length_m());
+      if (!first) {
+        // no sample left; an exit, if found, grazes the edge between samples
+        if (exit) CHECK(exit->position_NE.cwiseAbs().maxCoeff() == Approx(50).margin(1e-4));
+        continue;
+      }
+      ++exits;
+      REQUIRE(exit);
+      CHECK(exit->s_m <= *first + 1e-9);
+      CHECK(exit->s_m >= *first - 0.02 - 1e-9);
+      // on the path, on the edge
+      const Vec2 p = path.at(exit->s_m).position_NE;
+      CHECK((p - exit->position_NE).norm() < 1e-6);
+      CHECK(exit->position_NE.cwiseAbs().maxCoeff() == Approx(50).margin(1e-6));
+    }
+    CHECK(exits > 10);
+  }
+}
+
+TEST_CASE("vehicle_loader: in altitude mode the path must stay over the seabed") {
+  const std::string head = "vehicle:\n  trajectory:\n";
+  // 200 m north from [-45, 0] leaves the 100 m seabed at north 50: 95 m, 47.5 s
+  const std::string straight = "    start_m: [-45, 0]\n    length_m: 200\n";
+  auto i = expect_scenario_error(
+      head + straight + "    depth: {mode: altitude, altitude_m: 7.5}\n", "vehicle.trajectory",
+      {"the planned path leaves the seabed extent at t = 47.5 s (95 m along the path, on a "
+       "straight), position [north, east] = [50, 0] m (line 3, column 5)",
+       "allowed: with depth.mode altitude (terrain following), a path that stays over the "
+       "modelled seabed: north -50 .. 50, east -50 .. 50 (seabed.origin_m, seabed.extent_m); "
+       "turns have radius speed_m_s / max_turn_rate = 20 m"});
+  // in constant-depth mode the vehicle may fly beyond the seabed
+  CHECK(parse_scenario(head + straight, "s.yaml").vehicle.trajectory.straight_length_m == 200);
+  // a larger seabed holds it
+  CHECK_NOTHROW(parse_scenario("seabed: {origin_m: [-100, -100], extent_m: [300, 300]}\n" + head +
+                                   straight + "    depth: {mode: altitude}\n",
+                               "s.yaml"));
+  // sway narrows the allowed area on every side
+  const std::string inside =
+      "    start_m: [-45, 0]\n    length_m: 90\n"
+      "    depth: {mode: altitude}\n";
+  CHECK_NOTHROW(parse_scenario(head + inside + "    sway: {amplitude_m: 5}\n", "s.yaml"));
+  expect_scenario_error(
+      head + inside + "    sway: {amplitude_m: 5.5}\n", "vehicle.trajectory",
+      {"leaves the seabed extent at t = 0 s", "less sway.amplitude_m 5.5 on every side"});
+  // a lawnmower whose keyhole U-turns (radius 20 m, spacing 20 m) overshoot the legs by 46.5 m
+  const std::string lm =
+      "    kind: lawnmower\n    lawnmower: {origin_m: [-40, -20], leg_length_m: 80, "
+      "line_spacing_m: 20, legs: 3}\n    depth: {mode: altitude}\n";
+  i = expect_scenario_error(
+      head + lm, "vehicle.trajectory",
+      {"in the U-turn after lawnmower leg 0", "each U-turn reaches 46.4", "m beyond the leg ends"});
+  CHECK(contains(i.problem, "position [north, east] = [50, "));
+  // at 15 deg/s the turns have radius 7.6 m and fit
+  CHECK_NOTHROW(parse_scenario(head + lm + "    max_turn_rate_deg_s: 15\n", "s.yaml"));
+  // a lawnmower leg that leaves
+  expect_scenario_error(
+      head +
+          "    kind: lawnmower\n    lawnmower: {origin_m: [0, 0], leg_length_m: 80, legs: 1}\n"
+          "    depth: {mode: altitude}\n",
+      "vehicle.trajectory", {"t = 25 s (50 m along the path, on lawnmower leg 0)"});
+  // waypoints: the turn towards the second waypoint swings outside
+  expect_scenario_error(head +
+                            "    kind: waypoints\n    start_m: [0, 0]\n"
+                            "    waypoints_m: [[45, 0], [45, -40]]\n"
+                            "    depth: {mode: altitude}\n",
+                        "vehicle.trajectory", {"in a turn"});
+  // the check names the file when loading one
+  sonarloop::testing::TempDir dir("config-vehicle-loader-extent");
+  {
+    std::ofstream out(dir.file("off.yaml"));
+    out << head << straight << "    depth: {mode: altitude}\n";
+  }
+  try {
+    load_scenario(dir.file("off.yaml"));
+    FAIL("accepted");
+  } catch (const ConfigError& e) {
+    CHECK(std::string(e.what()).rfind(dir.file("off.yaml") + ": vehicle.trajectory: the planned",
+                                      0) == 0);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// the shipped files
+
+TEST_CASE("vehicle_loader: the shipped scenarios' vehicles") {
+  const std::string dir = SONARLOOP_SOURCE_DIR "/config/";
+  // default.yaml: north along east = 0 over the four targets, 7.5 m up, a good INS/DVL
+  const auto d = load_scenario(dir + "default.yaml");
+  const auto& t = d.vehicle.trajectory;
+  CHECK(t.kind == TrajectoryKind::kStraight);
+  CHECK(t.start.north_m == -45);
+  CHECK(t.start.east_m == 0);
+  CHECK(t.start_heading == 0);
+  CHECK(t.straight_length_m == 90);
+  CHECK(t.speed_m_s == 2);
+  CHECK(t.depth.mode == DepthMode::kAltitude);
+  CHECK(t.depth.altitude_m == 7.5);
+  CHECK(d.vehicle.nav.position_noise_sd_m == 0.1);
+  CHECK(d.vehicle.nav.position_drift_m_per_sqrt_s == 0.05);
+  CHECK(d.vehicle.nav.heading_noise_sd == rad(0.2));
+  CHECK(d.vehicle.nav.heading_bias == rad(0.5));
+  for (const auto& target : d.scene.targets) {
+    CHECK(target.position_m.x() > t.start.north_m);
+    CHECK(target.position_m.x() < t.start.north_m + t.straight_length_m);
+  }
+
+  for (const std::string name :
+       {"default", "seabed_flat", "seabed_ripples", "seabed_rocky", "seabed_cluttered"}) {
+    INFO(name);
+    const auto s = load_scenario(dir + name + ".yaml");
+    const auto& v = s.vehicle;
+    CHECK(v.trajectory.depth.mode == DepthMode::kAltitude);
+    CHECK(v.trajectory.depth.altitude_m == 7.5);
+    CHECK(v.trajectory.speed_m_s == 2);
+    if (name != "default") {
+      const auto& m = v.trajectory.lawnmower;
+      CHECK(v.trajectory.kind == TrajectoryKind::kLawnmower);
+      CHECK(m.legs == 3);
+      CHECK(m.leg_length_m == 80);
+      CHECK(m.line_spacing_m == 20);
+      CHECK(v.trajectory.max_turn_rate_rad_s == rad(15));
+      check_same(v, load_scenario(dir + "seabed_flat.yaml").vehicle);
+    }
+    // flown over the real seabed: inside the extent all the way, at the commanded altitude
+    const scene::Scene sc(s.scene);
+    const vehicle::Trajectory tr(v.trajectory,
+                                 [&](double n, double e) { return sc.seabed_z(n, e); });
+    const Vec2 lo = s.scene.seabed.origin_m;
+    const Vec2 hi = lo + s.scene.seabed.extent_m;
+    double min_margin = 1e9;
+    for (double ts = 0; ts <= tr.duration_s(); ts += 0.25) {
+      const auto st = tr.state_at(sonarloop::from_seconds(ts));
+      const Vec2 p = st.pose.position_W.head<2>();
+      min_margin =
+          std::min({min_margin, p.x() - lo.x(), hi.x() - p.x(), p.y() - lo.y(), hi.y() - p.y()});
+      CHECK(st.altitude_m == Approx(7.5).margin(0.5));
+    }
+    CHECK(min_margin > 2.0);
+    CHECK(tr.min_altitude_m() > 7.0);
+    CHECK(tr.duration_s() == Approx(name == "default" ? 45.0 : 148.7).margin(0.1));
+    // the nav model takes it
+    CHECK_NOTHROW(vehicle::NavSensorModel(v.nav, s.scene.seed));
+  }
+}
+
+namespace {
+
+// The commented-out lines of reference.yaml from the one containing `first` to the one
+// containing `last`, uncommented at `column` (where their '#' is).
+std::string uncomment(const std::string& text, const std::string& first, const std::string& last,
+                      std::size_t column) {
+  const auto begin = text.rfind('\n', text.find(first)) + 1;
+  const auto end = text.find('\n', text.find(last, begin));
+  std::istringstream in(text.substr(begin, end - begin));
+  std::string out;
+  for (std::string line; std::getline(in, line);) {
+    REQUIRE(line.size() > column + 1);
+    REQUIRE(line[column] == '#');
+    out += line.substr(0, column) + line.substr(column + 2) + "\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("vehicle_loader: config/reference.yaml gives exactly the documented defaults") {
+  const std::string path = SONARLOOP_SOURCE_DIR "/config/reference.yaml";
+  const auto ref = load_scenario(path);
+  check_same(ref.vehicle, VehicleDesc{});
+
+  // every key of every map is documented in the vehicle section, live or commented out (the keys
+  // of the other kinds and mode), each with a comment
+  const std::string text = read_file(path);
+  const auto section = text.find("\nvehicle:\n");
+  REQUIRE(section != std::string::npos);
+  const std::string vehicle_text = text.substr(section);
+  for (const auto* keys :
+       {&kTrajectoryKeys, &kLawnmowerKeys, &kDepthKeys, &kSwayKeys, &kAttitudeKeys, &kNavKeys}) {
+    for (const auto& key : *keys) {
+      INFO(key);
+      const auto at = vehicle_text.find(" " + key + ":");
+      REQUIRE(at != std::string::npos);
+      const auto bol = vehicle_text.rfind('\n', at) + 1;
+      const auto eol = vehicle_text.find('\n', at);
+      const std::string line = vehicle_text.substr(bol, eol - bol);
+      const bool live = line.find_first_not_of(' ') == line.find(key);
+      const bool is_map =
+          key == "lawnmower" || key == "depth" || key == "sway" || key == "attitude";
+      // a comment after the value (the second '#' on a commented-out line)
+      const auto hash = line.find('#', line.find(key));
+      if (!is_map) CHECK(hash != std::string::npos);
+      if (!live) CHECK(line.find('#') < line.find(key));
+    }
+  }
+  const Field root = parse_document(text, path);
+  const Field v = root.child("vehicle");
+  REQUIRE(v.is_map());
+  const Field traj = v.child("trajectory");
+  for (const auto& key : kTrajectoryKeys) {
+    if (key != "waypoints_m" && key != "lawnmower") CHECK(traj.has(key));
+  }
+  const Field nav = v.child("nav");
+  for (const auto& key : kNavKeys)
+    CHECK(nav.has(key));
+
+  // the commented-out lawnmower block gives the LawnmowerDesc defaults
+  VehicleDesc expect_lm;
+  expect_lm.trajectory.kind = TrajectoryKind::kLawnmower;
+  const auto lm = parse_ok("trajectory:\n    kind: lawnmower\n" +
+                           uncomment(text, "    # lawnmower:", "    #   first_turn:", 4));
+  check_same(lm, expect_lm);
+  // and the commented-out altitude keys the DepthDesc defaults
+  const auto alt =
+      parse_ok("trajectory:\n    depth:\n      mode: altitude\n" +
+               uncomment(text, "      # altitude_m:", "      # vertical_smoothing_m:", 6));
+  VehicleDesc expect_alt;
+  expect_alt.trajectory.depth.mode = DepthMode::kAltitude;
+  check_same(alt, expect_alt);
+  // the waypoints example parses
+  const auto wp = parse_ok("trajectory:\n    kind: waypoints\n" +
+                           uncomment(text, "    # waypoints_m:", "    # waypoints_m:", 4));
+  CHECK(wp.trajectory.waypoints.size() == 2);
+}
+
+// ---------------------------------------------------------------------------------------------
+// files and formatting
+
+TEST_CASE("vehicle_loader: load_vehicle reads a file and names it in errors") {
+  sonarloop::testing::TempDir dir("config-vehicle-loader");
+  {
+    std::ofstream out(dir.file("auv.yaml"));
+    out << "trajectory:\n  kind: lawnmower\n  lawnmower: {legs: 2}\nnav: {heading_bias_deg: 1}\n";
+  }
+  const auto v = load_vehicle(dir.file("auv.yaml"));
+  CHECK(v.trajectory.lawnmower.legs == 2);
+  CHECK(v.nav.heading_bias == rad(1));
+  try {
+    load_vehicle(dir.file("missing.yaml"));
+    FAIL("loaded a missing file");
+  } catch (const ConfigError& e) {
+    CHECK(std::string(e.what()).rfind(dir.file("missing.yaml") + ": (file): no such file", 0) == 0);
+  }
+  {
+    std::ofstream out(dir.file("bad.yaml"));
+    out << "nav:\n  heading_bias_deg: 200\n";
+  }
+  try {
+    load_vehicle(dir.file("bad.yaml"));
+    FAIL("accepted");
+  } catch (const ConfigError& e) {
+    CHECK(std::string(e.what()).rfind(
+              dir.file("bad.yaml") +
+                  ": nav.heading_bias_deg: 200 is out of range (line 2, column 21)",
+              0) == 0);
+  }
+  // malformed YAML
+  expect_error("trajectory: {kind: straight\n", "", {"YAML syntax error"});
+}
+
+TEST_CASE("vehicle_loader: format_vehicle_yaml writes the keys of the kind and round-trips") {
+  VehicleDesc d;
+  d.trajectory.kind = TrajectoryKind::kWaypoints;
+  d.trajectory.waypoints = {{1.5, 2.25}, {-3, 4}};
+  d.trajectory.start_heading = 0.1;  // no short decimal in degrees
+  d.trajectory.max_turn_rate_rad_s = rad(15);
+  d.trajectory.attitude.max_roll = 0.3;
+  d.nav.heading_bias = rad(0.5);
+  d.nav.heading_noise_sd = 1e-4;
+  const std::string yaml = format_vehicle_yaml(d, 2);
+  INFO(yaml);
+  CHECK(yaml.rfind("  trajectory:\n    kind: waypoints\n", 0) == 0);
+  CHECK(contains(yaml, "\n    waypoints_m: [[1.5, 2.25], [-3, 4]]\n"));
+  CHECK(contains(yaml, "\n    max_turn_rate_deg_s: 15\n"));
+  CHECK(contains(yaml, "\n    heading_bias_deg: 0.5\n"));
+  CHECK_FALSE(contains(yaml, "length_m"));
+  CHECK_FALSE(contains(yaml, "lawnmower"));
+  CHECK_FALSE(contains(yaml, "altitude_m"));
+  check_same(parse_vehicle_node(parse_document("vehicle:\n" + yaml, "f.yaml").child("vehicle")), d);
+  // the defaults, and each kind and mode
+  check_same(parse_ok(format_vehicle_yaml(VehicleDesc{})), VehicleDesc{});
+  VehicleDesc l;
+  l.trajectory.kind = TrajectoryKind::kLawnmower;
+  l.trajectory.lawnmower.first_turn = TurnDirection::kPort;
+  l.trajectory.depth.mode = DepthMode::kAltitude;
+  l.trajectory.depth.altitude_m = 7.5;
+  const std::string lyaml = format_vehicle_yaml(l);
+  INFO(lyaml);
+  CHECK(contains(lyaml, "\n  lawnmower:\n    origin_m: [0, 0]\n"));
+  CHECK(contains(lyaml, "\n    first_turn: port\n"));
+  CHECK(contains(lyaml, "\n    mode: altitude\n    altitude_m: 7.5\n"));
+  CHECK_FALSE(contains(lyaml, "\n    depth_m:"));
+  CHECK_FALSE(contains(lyaml, "start_m"));
+  check_same(parse_ok(lyaml), l);
+  // the defaults in degrees are the shortest exact texts (as in config/reference.yaml)
+  const std::string def = format_vehicle_yaml(VehicleDesc{});
+  CHECK(contains(def, "max_turn_rate_deg_s: 5.729577951308232\n"));
+  CHECK(contains(def, "max_roll_deg: 20.05352282957881\n"));
+  CHECK(contains(def, "max_pitch_deg: 28.64788975654116\n"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// seeded randomized test (style.md habit 22)
+
+namespace {
+
+// A YAML map entry: a scalar or flow text, or a nested map.
+struct Node {
+  std::string key;
+  std::string text;
+  std::vector<Node> children;
+  bool map = false;
+};
+
+std::string render(const std::vector<Node>& nodes, bool flow, int indent) {
+  std::string out;
+  if (flow) {
+    out = "{";
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      out += (i ? ", " : "") + nodes[i].key + ": " +
+             (nodes[i].map ? render(nodes[i].children, true, 0) : nodes[i].text);
+    }
+    return out + "}";
+  }
+  const std::string pad(static_cast<std::size_t>(indent), ' ');
+  for (const auto& n : nodes) {
+    if (n.map) {
+      out += pad + n.key + ":" +
+             (n.children.empty() ? " {}\n" : "\n" + render(n.children, false, indent + 2));
+    } else {
+      out += pad + n.key + ": " + n.text + "\n";
+    }
+  }
+  return out;
+}
+
+std::string real_text(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+// How a leaf's value is read, for corrupting it.
+enum class Leaf { kReal, kInt, kWord, kPair, kWaypoints };
+
+struct LeafRef {
+  std::vector<std::size_t> where;  // indices from the root through the maps
+  std::string path;                // relative to the vehicle node
+  Leaf kind;
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+};
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+class VehicleGenerator {
+ public:
+  explicit VehicleGenerator(std::uint64_t sample) : rng_(20240917, RngStream::kDataset, sample) {}
+  Rng& rng() { return rng_; }
+
+  // A random valid vehicle map and the VehicleDesc it describes; `leaves` lists every value set.
+  void generate(std::vector<Node>& root, VehicleDesc& expect, std::vector<LeafRef>& leaves) {
+    for (int attempt = 0;; ++attempt) {
+      REQUIRE(attempt < 1000);
+      root.clear();
+      leaves.clear();
+      expect = VehicleDesc{};
+      p_ = rng_.uniform();
+      build(root, expect);
+      if (!vehicle::validate(expect).empty()) continue;
+      const double length = vehicle::plan_path(expect.trajectory).length_m();
+      if (!(length / expect.trajectory.depth.profile_step_m <= 2e5)) continue;  // keep it quick
+      if (!(length / expect.trajectory.speed_m_s <= kMaxMissionDurationS)) continue;
+      shuffle(root);
+      collect(root, {}, "", leaves);
+      return;
+    }
+  }
+
+  // the spec of a leaf key, for corruptions
+  struct Spec {
+    Leaf kind;
+    double lo, hi;
+  };
+  static Spec spec_of(const std::string& key) {
+    static const std::vector<std::pair<std::string, Spec>> specs = {
+        {"kind", {Leaf::kWord, 0, 0}},
+        {"start_m", {Leaf::kPair, -kInf, kInf}},
+        {"heading_deg", {Leaf::kReal, -kInf, kInf}},
+        {"length_m", {Leaf::kReal, 0, kInf}},
+        {"waypoints_m", {Leaf::kWaypoints, 0, 0}},
+        {"origin_m", {Leaf::kPair, -kInf, kInf}},
+        {"first_leg_heading_deg", {Leaf::kReal, -kInf, kInf}},
+        {"leg_length_m", {Leaf::kReal, 0, kInf}},
+        {"line_spacing_m", {Leaf::kReal, 0, kInf}},
+        {"legs", {Leaf::kInt, 1, 10000}},
+        {"first_turn", {Leaf::kWord, 0, 0}},
+        {"speed_m_s", {Leaf::kReal, 0, 20}},
+        {"max_turn_rate_deg_s", {Leaf::kReal, 0, 114.59155902616465}},
+        {"mode", {Leaf::kWord, 0, 0}},
+        {"depth_m", {Leaf::kReal, 0, kInf}},
+        {"altitude_m", {Leaf::kReal, 0, kInf}},
+        {"max_climb_rate_m_s", {Leaf::kReal, 0, 20}},
+        {"look_ahead_m", {Leaf::kReal, 0, kInf}},
+        {"min_depth_m", {Leaf::kReal, 0, kInf}},
+        {"vertical_smoothing_m", {Leaf::kReal, 0, 1000}},
+        {"profile_step_m", {Leaf::kReal, 0.05, 10}},
+        {"amplitude_m", {Leaf::kReal, 0, kInf}},
+        {"period_s", {Leaf::kReal, 0, kInf}},
+        {"phase_deg", {Leaf::kReal, -kInf, kInf}},
+        {"yaw_coupling", {Leaf::kReal, 0, 1}},
+        {"roll_gain", {Leaf::kReal, -10, 10}},
+        {"max_roll_deg", {Leaf::kReal, 0, 90}},
+        {"roll_time_constant_s", {Leaf::kReal, 0, 3600}},
+        {"pitch_gain", {Leaf::kReal, 0, 10}},
+        {"max_pitch_deg", {Leaf::kReal, 0, 90}},
+        {"position_noise_m", {Leaf::kReal, 0, kInf}},
+        {"position_drift_m_per_sqrt_s", {Leaf::kReal, 0, kInf}},
+        {"heading_bias_deg", {Leaf::kReal, -180, 180}},
+        {"heading_noise_deg", {Leaf::kReal, 0, kInf}},
+        {"heading_drift_deg_per_sqrt_s", {Leaf::kReal, 0, kInf}},
+        {"attitude_noise_deg", {Leaf::kReal, 0, kInf}},
+        {"speed_noise_m_s", {Leaf::kReal, 0, kInf}},
+        {"speed_scale_error", {Leaf::kReal, -0.5, 0.5}},
+        {"yaw_rate_noise_deg_s", {Leaf::kReal, 0, kInf}},
+        {"depth_noise_m", {Leaf::kReal, 0, kInf}},
+        {"altitude_noise_m", {Leaf::kReal, 0, kInf}},
+        {"noise_step_s", {Leaf::kReal, 1e-9, 3600}},
+        {"drift_step_s", {Leaf::kReal, 1e-9, 3600}},
+    };
+    for (const auto& [k, s] : specs) {
+      if (k == key) return s;
+    }
+    FAIL("no spec for " << key);
+    return {Leaf::kReal, 0, 0};
+  }
+
+ private:
+  bool maybe() { return rng_.uniform() < p_; }
+
+  // a value in [lo, hi] (`open` ends excluded), sometimes on a closed bound or an integer;
+  // unbounded ranges draw within [soft_lo, soft_hi]
+  double draw(double lo, double hi, bool lo_open, bool hi_open, double soft_lo, double soft_hi) {
+    const double a = std::isfinite(lo) ? lo : soft_lo;
+    const double b = std::isfinite(hi) ? std::min(hi, soft_hi) : soft_hi;
+    const double u = rng_.uniform();
+    if (u < 0.08 && !lo_open && std::isfinite(lo)) return lo;
+    if (u < 0.16 && !hi_open && std::isfinite(hi) && hi <= soft_hi) return hi;
+    double v = 0;
+    if (u < 0.35) {
+      v = std::round(rng_.uniform(a, b));
+    } else if (a > 0 && b / a >= 100) {
+      v = std::exp(rng_.uniform(std::log(a), std::log(b)));
+    } else {
+      v = rng_.uniform(a, b);
+    }
+    // just inside an open bound (not a subnormal number next to 0, which no YAML reader takes)
+    if ((lo_open && v <= lo) || v < lo) v = lo == 0 ? 1e-12 : std::nextafter(lo, kInf);
+    if ((hi_open && v >= hi) || v > hi) v = std::nextafter(hi, -kInf);
+    return v;
+  }
+
+  // adds `key: value` (a number) to `map` with probability p (or always), returns the value
+  void number(std::vector<Node>& map, const std::string& key, double& out, double si_factor,
+              double lo, double hi, bool lo_open, bool hi_open, double soft_lo, double soft_hi,
+              bool always = false) {
+    if (!always && !maybe()) return;
+    const double v = draw(lo, hi, lo_open, hi_open, soft_lo, soft_hi);
+    const std::string text = real_text(v);
+    map.push_back({key, text, {}, false});
+    out = si_factor == 1.0 ? std::stod(text) : std::stod(text) * si_factor;
+  }
+
+  std::string pair(double& north, double& east, double range) {
+    north = std::round(rng_.uniform(-range, range) * 8) / 8;
+    east = rng_.uniform(-range, range);
+    const std::string e = real_text(east);
+    east = std::stod(e);
+    return "[" + real_text(north) + ", " + e + "]";
+  }
+
+  void build(std::vector<Node>& root, VehicleDesc& d) {
+    const double deg = std::numbers::pi / 180.0;
+    auto& t = d.trajectory;
+    Node traj{"trajectory", "", {}, true};
+    auto& tm = traj.children;
+    const auto kind = static_cast<int>(rng_.below(3));
+    t.kind = static_cast<TrajectoryKind>(kind);
+    if (t.kind != TrajectoryKind::kStraight || rng_.uniform() < 0.5) {
+      tm.push_back({"kind", std::string(vehicle::to_string(t.kind)), {}, false});
+    }
+    if (t.kind != TrajectoryKind::kLawnmower) {
+      if (maybe()) tm.push_back({"start_m", pair(t.start.north_m, t.start.east_m, 500), {}, false});
+      number(tm, "heading_deg", t.start_heading, deg, -kInf, kInf, false, false, -720, 720);
+    }
+    if (t.kind == TrajectoryKind::kStraight) {
+      number(tm, "length_m", t.straight_length_m, 1, 0, kInf, true, false, 0.01, 3000);
+    } else if (t.kind == TrajectoryKind::kWaypoints) {
+      const auto n = 1 + rng_.below(5);
+      std::string list = "[";
+      vehicle::NorthEast prev = t.start;
+      for (std::uint64_t i = 0; i < n; ++i) {
+        const double step = rng_.uniform(1, 300);
+        const double dir = rng_.uniform(-4, 4);
+        vehicle::NorthEast w{prev.north_m + step * std::cos(dir),
+                             prev.east_m + step * std::sin(dir)};
+        const std::string tn = real_text(w.north_m);
+        const std::string te = real_text(w.east_m);
+        w = {std::stod(tn), std::stod(te)};
+        list += (i ? ", [" : "[") + tn + ", " + te + "]";
+        t.waypoints.push_back(w);
+        prev = w;
+      }
+      tm.push_back({"waypoints_m", list + "]", {}, false});
+    } else if (maybe()) {
+      Node lm{"lawnmower", "", {}, true};
+      auto& m = t.lawnmower;
+      if (maybe())
+        lm.children.push_back(
+            {"origin_m", pair(m.origin.north_m, m.origin.east_m, 500), {}, false});
+      number(lm.children, "first_leg_heading_deg", m.first_leg_heading, deg, -kInf, kInf, false,
+             false, -400, 400);
+      number(lm.children, "leg_length_m", m.leg_length_m, 1, 0, kInf, true, false, 0.01, 2000);
+      number(lm.children, "line_spacing_m", m.line_spacing_m, 1, 0, kInf, true, false, 0.01, 500);
+      if (maybe()) {
+        m.legs = 1 + static_cast<int>(rng_.below(12));
+        lm.children.push_back({"legs", std::to_string(m.legs), {}, false});
+      }
+      if (maybe()) {
+        m.first_turn = rng_.uniform() < 0.5 ? TurnDirection::kStarboard : TurnDirection::kPort;
+        lm.children.push_back(
+            {"first_turn", std::string(vehicle::to_string(m.first_turn)), {}, false});
+      }
+      tm.push_back(lm);
+    }
+    number(tm, "speed_m_s", t.speed_m_s, 1, 0, 20, true, false, 0.2, 20);
+    number(tm, "max_turn_rate_deg_s", t.max_turn_rate_rad_s, deg, 0, 114.59155902616465, true,
+           false, 1, 114.59155902616465);
+    if (maybe()) {
+      Node dn{"depth", "", {}, true};
+      auto& dd = t.depth;
+      auto& c = dn.children;
+      dd.mode = rng_.uniform() < 0.5 ? DepthMode::kAltitude : DepthMode::kConstantDepth;
+      if (dd.mode == DepthMode::kAltitude || rng_.uniform() < 0.5) {
+        c.push_back({"mode", std::string(vehicle::to_string(dd.mode)), {}, false});
+      }
+      if (dd.mode == DepthMode::kConstantDepth) {
+        number(c, "depth_m", dd.depth_m, 1, 0, kInf, false, false, 0, 6000);
+      } else {
+        number(c, "altitude_m", dd.altitude_m, 1, 0, kInf, true, false, 0.1, 100);
+        number(c, "max_climb_rate_m_s", dd.max_climb_rate_m_s, 1, 0, 20, true, false, 0.01, 20);
+        number(c, "look_ahead_m", dd.look_ahead_m, 1, 0, kInf, false, false, 0, 500);
+        number(c, "min_depth_m", dd.min_depth_m, 1, 0, kInf, false, false, 0, 50);
+        number(c, "vertical_smoothing_m", dd.vertical_smoothing_m, 1, 0, 1000, false, false, 0,
+               1000);
+      }
+      number(c, "profile_step_m", dd.profile_step_m, 1, 0.05, 10, false, false, 0.05, 10);
+      tm.push_back(dn);
+    }
+    if (maybe()) {
+      Node sn{"sway", "", {}, true};
+      auto& s = t.sway;
+      number(sn.children, "amplitude_m", s.amplitude_m, 1, 0, kInf, false, false, 0, 5);
+      number(sn.children, "period_s", s.period_s, 1, 0, kInf, true, false, 0.5, 120);
+      number(sn.children, "phase_deg", s.phase, deg, -kInf, kInf, false, false, -360, 360);
+      number(sn.children, "yaw_coupling", s.yaw_coupling, 1, 0, 1, false, false, 0, 1);
+      tm.push_back(sn);
+    }
+    if (maybe()) {
+      Node an{"attitude", "", {}, true};
+      auto& a = t.attitude;
+      number(an.children, "roll_gain", a.roll_gain, 1, -10, 10, false, false, -10, 10);
+      number(an.children, "max_roll_deg", a.max_roll, deg, 0, 90, true, true, 0, 90);
+      number(an.children, "roll_time_constant_s", a.roll_time_constant_s, 1, 0, 3600, false, false,
+             0, 3600);
+      number(an.children, "pitch_gain", a.pitch_gain, 1, 0, 10, false, false, 0, 10);
+      number(an.children, "max_pitch_deg", a.max_pitch, deg, 0, 90, true, true, 0, 90);
+      tm.push_back(an);
+    }
+    if (!tm.empty() || rng_.uniform() < 0.5) root.push_back(traj);
+    if (maybe()) {
+      Node nn{"nav", "", {}, true};
+      auto& n = d.nav;
+      auto& c = nn.children;
+      number(c, "position_noise_m", n.position_noise_sd_m, 1, 0, kInf, false, false, 0, 5);
+      number(c, "position_drift_m_per_sqrt_s", n.position_drift_m_per_sqrt_s, 1, 0, kInf, false,
+             false, 0, 0.5);
+      number(c, "heading_bias_deg", n.heading_bias, deg, -180, 180, false, false, -180, 180);
+      number(c, "heading_noise_deg", n.heading_noise_sd, deg, 0, kInf, false, false, 0, 2);
+      number(c, "heading_drift_deg_per_sqrt_s", n.heading_drift_rad_per_sqrt_s, deg, 0, kInf, false,
+             false, 0, 0.1);
+      number(c, "attitude_noise_deg", n.attitude_noise_sd, deg, 0, kInf, false, false, 0, 1);
+      number(c, "speed_noise_m_s", n.speed_noise_sd_m_s, 1, 0, kInf, false, false, 0, 0.1);
+      number(c, "speed_scale_error", n.speed_scale_factor_error, 1, -0.5, 0.5, true, true, -0.5,
+             0.5);
+      number(c, "yaw_rate_noise_deg_s", n.yaw_rate_noise_sd_rad_s, deg, 0, kInf, false, false, 0,
+             0.5);
+      number(c, "depth_noise_m", n.depth_noise_sd_m, 1, 0, kInf, false, false, 0, 0.5);
+      number(c, "altitude_noise_m", n.altitude_noise_sd_m, 1, 0, kInf, false, false, 0, 0.5);
+      number(c, "noise_step_s", n.noise_step_s, 1, 1e-9, 3600, false, false, 1e-9, 3600);
+      number(c, "drift_step_s", n.drift_step_s, 1, 1e-9, 3600, false, false, 1e-9, 3600);
+      root.push_back(nn);
+    }
+  }
+
+  void shuffle(std::vector<Node>& nodes) {
+    for (std::size_t i = nodes.size(); i > 1; --i)
+      std::swap(nodes[i - 1], nodes[rng_.below(i)]);
+    for (auto& n : nodes) {
+      if (n.map) shuffle(n.children);
+    }
+  }
+
+  static void collect(const std::vector<Node>& nodes, std::vector<std::size_t> where,
+                      const std::string& prefix, std::vector<LeafRef>& out) {
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      auto w = where;
+      w.push_back(i);
+      const std::string path = prefix + nodes[i].key;
+      if (nodes[i].map) {
+        collect(nodes[i].children, w, path + ".", out);
+      } else {
+        const Spec s = spec_of(nodes[i].key);
+        out.push_back({w, path, s.kind, s.lo, s.hi});
+      }
+    }
+  }
+
+  Rng rng_;
+  double p_ = 0.5;
+};
+
+Node& node_at(std::vector<Node>& root, const std::vector<std::size_t>& where) {
+  std::vector<Node>* level = &root;
+  Node* n = nullptr;
+  for (std::size_t i : where) {
+    n = &(*level)[i];
+    level = &n->children;
+  }
+  return *n;
+}
+
+// the map at a key path (created if missing), for adding keys
+std::vector<Node>& map_at(std::vector<Node>& root, const std::vector<std::string>& keys) {
+  std::vector<Node>* level = &root;
+  for (const auto& k : keys) {
+    auto it = std::find_if(level->begin(), level->end(), [&](const Node& n) { return n.key == k; });
+    if (it == level->end()) {
+      level->push_back({k, "", {}, true});
+      it = level->end() - 1;
+    }
+    level = &it->children;
+  }
+  return *level;
+}
+
+// A vehicle map under `vehicle:` in a larger document, or a standalone document.
+VehicleDesc parse_either(const std::vector<Node>& root, bool nested, bool flow,
+                         const std::string& file) {
+  const std::string body =
+      flow ? render(root, true, 0) + "\n" : render(root, false, nested ? 2 : 0);
+  if (!nested) return parse_vehicle(body, file);
+  const std::string text = "other: 1\nvehicle:" + (flow ? " " + body : "\n" + body);
+  return parse_vehicle_node(parse_document(text, file).child("vehicle"));
+}
+
+}  // namespace
+
+TEST_CASE("vehicle_loader: random valid vehicles round-trip, corruptions are rejected") {
+  constexpr int kSamples = 400;
+  constexpr int kCorruptionsPerSample = 6;
+  int corruptions = 0;
+  int kinds[3] = {0, 0, 0};
+  int altitude = 0;
+  for (int sample = 0; sample < kSamples; ++sample) {
+    VehicleGenerator gen(static_cast<std::uint64_t>(sample));
+    std::vector<Node> root;
+    VehicleDesc expect;
+    std::vector<LeafRef> leaves;
+    gen.generate(root, expect, leaves);
+    Rng& rng = gen.rng();
+    const bool nested = rng.uniform() < 0.5;
+    const bool flow = rng.uniform() < 0.3;
+    const std::string file = "random-" + std::to_string(sample) + ".yaml";
+    INFO("sample " << sample << " (nested " << nested << ", flow " << flow << "):\n"
+                   << render(root, false, 0));
+    VehicleDesc got;
+    try {
+      got = parse_either(root, nested, flow, file);
+    } catch (const ConfigError& e) {
+      FAIL("valid vehicle rejected: " << e.what());
+    }
+    check_same(got, expect);
+    ++kinds[static_cast<int>(got.trajectory.kind)];
+    // written out and read back, bit for bit
+    const std::string written = format_vehicle_yaml(got);
+    INFO("written:\n" << written);
+    check_same(parse_vehicle(written, "written.yaml"), got);
+    // the planner and the nav model accept every vehicle the loader accepts
+    try {
+      const bool alt = got.trajectory.depth.mode == DepthMode::kAltitude;
+      altitude += alt ? 1 : 0;
+      const vehicle::Trajectory tr(got.trajectory,
+                                   alt ? vehicle::SeabedDepthFn(flat_seabed) : nullptr);
+      CHECK(tr.duration_s() > 0);
+      const vehicle::NavSensorModel nav(got.nav, 1);
+      CHECK(std::isfinite(nav.measure(tr.state_at(tr.end_time() / 2)).north_m));
+    } catch (const std::exception& e) {
+      FAIL("the vehicle model rejected a loaded vehicle: " << e.what());
+    }
+
+    for (int c = 0; c < kCorruptionsPerSample; ++c) {
+      std::vector<Node> bad = root;
+      std::string expect_path;
+      std::string what;
+      const double u = rng.uniform();
+      if (u < 0.15 || leaves.empty()) {
+        // an unknown key in one of the maps
+        static const std::vector<std::vector<std::string>> maps = {{},
+                                                                   {"trajectory"},
+                                                                   {"trajectory", "depth"},
+                                                                   {"trajectory", "sway"},
+                                                                   {"trajectory", "attitude"},
+                                                                   {"nav"}};
+        const auto& keys = maps[rng.below(maps.size())];
+        map_at(bad, keys).push_back({"zz_unknown", "1", {}, false});
+        for (const auto& k : keys)
+          expect_path += k + ".";
+        expect_path += "zz_unknown";
+        what = "unknown key";
+      } else if (u < 0.3) {
+        // a key of another kind or depth mode
+        const auto kind = expect.trajectory.kind;
+        auto& traj = map_at(bad, {"trajectory"});
+        if (rng.uniform() < 0.5) {
+          const bool has_kind =
+              std::any_of(traj.begin(), traj.end(), [](const Node& n) { return n.key == "kind"; });
+          if (!has_kind) traj.push_back({"kind", std::string(vehicle::to_string(kind)), {}, false});
+          if (kind == TrajectoryKind::kStraight) {
+            traj.push_back({"waypoints_m", "[[1, 2]]", {}, false});
+            expect_path = "trajectory.waypoints_m";
+          } else if (kind == TrajectoryKind::kWaypoints) {
+            traj.push_back({"lawnmower", "{}", {}, false});
+            expect_path = "trajectory.lawnmower";
+          } else {
+            traj.push_back({"length_m", "10", {}, false});
+            expect_path = "trajectory.length_m";
+          }
+        } else {
+          auto& depth = map_at(bad, {"trajectory", "depth"});
+          if (expect.trajectory.depth.mode == DepthMode::kAltitude) {
+            depth.push_back({"depth_m", "10", {}, false});
+            expect_path = "trajectory.depth.depth_m";
+          } else {
+            depth.push_back({"look_ahead_m", "10", {}, false});
+            expect_path = "trajectory.depth.look_ahead_m";
+          }
+        }
+        what = "foreign key " + expect_path;
+      } else {
+        const LeafRef& leaf = leaves[rng.below(leaves.size())];
+        Node& n = node_at(bad, leaf.where);
+        expect_path = leaf.path;
+        std::vector<std::pair<std::string, std::string>> options;  // text, path suffix
+        switch (leaf.kind) {
+          case Leaf::kReal:
+            options = {{"abc", ""},    {".nan", ""}, {".inf", ""},  {"'5'", ""}, {"[1, 2]", ""},
+                       {"{a: 1}", ""}, {"~", ""},    {"1e999", ""}, {"true", ""}};
+            if (std::isfinite(leaf.lo)) {
+              options.push_back({real_text(leaf.lo - 0.5 * std::max(std::fabs(leaf.lo), 1.0)), ""});
+              if (leaf.lo == 0 && leaf.hi > 0) options.push_back({"-1e-300", ""});
+            }
+            if (std::isfinite(leaf.hi)) {
+              options.push_back({real_text(leaf.hi + 0.5 * std::max(std::fabs(leaf.hi), 1.0)), ""});
+              options.push_back({real_text(std::nextafter(leaf.hi, kInf) +
+                                           1e-9 * std::max(std::fabs(leaf.hi), 1.0)),
+                                 ""});
+            }
+            break;
+          case Leaf::kInt:
+            options = {{"1.5", ""}, {"abc", ""}, {"0", ""},          {"10001", ""},
+                       {"~", ""},   {"[1]", ""}, {"99999999999", ""}};
+            break;
+          case Leaf::kWord:
+            options = {{"zz_word", ""}, {"[1, 2]", ""}, {"{a: 1}", ""}, {"~", ""}, {"7", ""}};
+            break;
+          case Leaf::kPair:
+            options = {{"5", ""},      {"[1]", ""},       {"[1, 2, 3]", ""},   {"~", ""},
+                       {"{a: 1}", ""}, {"[a, 1]", "[0]"}, {"[1, .nan]", "[1]"}};
+            break;
+          case Leaf::kWaypoints:
+            options = {{"[]", ""},       {"5", ""},      {"~", ""},
+                       {"[[1]]", "[0]"}, {"[7]", "[0]"}, {"[[5, 5], [5, 5]]", "[1]"},
+                       {"{a: 1}", ""}};
+            break;
+        }
+        const auto& o = options[rng.below(options.size())];
+        n.text = o.first;
+        expect_path += o.second;
+        what = "set " + leaf.path + " to '" + n.text + "'";
+      }
+      INFO("corruption: " << what << "\n" << render(bad, false, 0));
+      ++corruptions;
+      try {
+        parse_either(bad, nested, flow, file);
+        FAIL("corrupted vehicle accepted");
+      } catch (const ConfigError& e) {
+        const std::string msg = e.what();
+        INFO("message: " << msg);
+        CHECK(msg.rfind(file + ": ", 0) == 0);
+        CHECK(contains(msg, "; allowed: "));
+        CHECK(e.first().path == (nested ? "vehicle." : "") + expect_path);
+      } catch (const std::exception& e) {
+        FAIL("not a ConfigError: " << e.what());
+      }
+    }
+  }
+  CHECK(corruptions == kSamples * kCorruptionsPerSample);
+  for (int k : kinds)
+    CHECK(k > 50);
+  CHECK(altitude > 50);
+}
+
+TEST_CASE("vehicle_loader: random byte edits give a vehicle or a ConfigError, never a crash") {
+  VehicleDesc base;
+  base.trajectory.kind = TrajectoryKind::kLawnmower;
+  base.trajectory.depth.mode = DepthMode::kAltitude;
+  base.trajectory.sway.amplitude_m = 1;
+  base.nav.position_noise_sd_m = 0.1;
+  const std::string full = format_vehicle_yaml(base);
+  const std::string alphabet = "{}[]:,-#&*!|>'\"%@`? \n\t.0123456789abxyz~";
+  Rng rng(12, RngStream::kDataset, 8);
+  int accepted = 0;
+  int rejected = 0;
+  for (int k = 0; k < 3000; ++k) {
+    std::string text = full;
+    const auto edits = 1 + rng.below(4);
+    for (std::uint64_t j = 0; j < edits && !text.empty(); ++j) {
+      const std::size_t pos = rng.below(text.size());
+      const char c = alphabet[rng.below(alphabet.size())];
+      switch (rng.below(3)) {
+        case 0:
+          text[pos] = c;
+          break;
+        case 1:
+          text.erase(pos, 1 + rng.below(5));
+          break;
+        default:
+          text.insert(pos, 1, c);
+          break;
+      }
+    }
+    try {
+      const auto d = parse_vehicle(text, "edited.yaml");
+      CHECK(vehicle::validate(d).empty());
+      const double length = vehicle::plan_path(d.trajectory).length_m();
+      if (length / d.trajectory.depth.profile_step_m < 1e5) {
+        const bool alt = d.trajectory.depth.mode == DepthMode::kAltitude;
+        CHECK_NOTHROW(
+            vehicle::Trajectory(d.trajectory, alt ? vehicle::SeabedDepthFn(flat_seabed) : nullptr));
+      }
+      ++accepted;
+    } catch (const ConfigError& e) {
+      ++rejected;
+      const std::string msg = e.what();
+      if (msg.rfind("edited.yaml: ", 0) != 0 || !contains(msg, "; allowed: ")) {
+        FAIL("badly formed message: " << msg);
+      }
+    } catch (const std::exception& e) {
+      FAIL("not a ConfigError: " << e.what() << "\n" << text);
+    }
+  }
+  CHECK(accepted > 0);
+  CHECK(rejected > 0);
+}

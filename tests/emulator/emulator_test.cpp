@@ -1,0 +1,236 @@
+// The emulator in-process: --rate max determinism, the navigation it publishes against the
+// vehicle's navigation model, the UDP size rule, and following an external pose (HIL) with a
+// stale period.
+#include <atomic>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "config/loader/scenario_loader.h"
+#include "drivers/can/candump_log.h"
+#include "drivers/n2k/messages.h"
+#include "drivers/net/udp_receiver.h"
+#include "drivers/net/udp_sender.h"
+#include "drivers/xtf/xtf_codec.h"
+#include "drivers/xtf/xtf_file.h"
+#include "emulator/emulator.h"
+#include "emulator/pose_message.h"
+#include "sim/core/geodesy.h"
+#include "sim/vehicle/nav_sensor.h"
+#include "sim/vehicle/trajectory.h"
+#include "tests/emulator/test_scenario.h"
+#include "tests/support/temp_dir.h"
+
+using namespace sonarloop;
+using namespace sonarloop::emulator;
+
+namespace {
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+config::Scenario small_scenario() {
+  return config::parse_scenario(testing::small_scenario_yaml(), "test.yaml");
+}
+
+RunStats run_max(const std::string& dir, int threads, double duration_s) {
+  EmulatorOptions o;
+  o.rate = parse_rate("max");
+  o.threads = threads;
+  o.duration_s = duration_s;
+  o.record_dir = dir;
+  o.stats_interval_s = 0;
+  MonotonicClock clock;
+  EmulatorHooks hooks;
+  hooks.message = [](std::string_view) {};
+  Emulator emu(small_scenario(), o, clock, hooks);
+  return emu.run();
+}
+
+std::size_t count_lines(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+}  // namespace
+
+TEST_CASE("emulator --rate max: byte-identical recordings on 1 and 2 threads") {
+  testing::TempDir dir("emu-determinism");
+  const RunStats a = run_max(dir.file("a"), 1, 4.0);
+  const RunStats b = run_max(dir.file("b"), 2, 4.0);
+  // 4 s at the sonar's ping period (2 x 20 m / c): the pings with k·T < 4 s
+  const config::Scenario sc = small_scenario();
+  const SimTime period =
+      from_seconds(render::make_sonar_setup(sc.sonar, sc.scene.water).ping_period_s);
+  const auto pings = static_cast<std::size_t>((from_seconds(4.0) - 1) / period + 1);
+  CHECK(pings > 140);
+  CHECK(a.pings_sent == pings);
+  CHECK(b.pings_sent == pings);
+  CHECK(a.deadline_misses() == 0);
+  CHECK(a.ping_lateness.count() == 0);  // no deadlines at --rate max
+  CHECK(a.epoch_utc_ns == kMaxRateEpochUtcNs);
+  for (const char* f : {"pings.xtf", "nav.log", "truth.csv"}) {
+    INFO(f);
+    const std::string fa = slurp(dir.file(std::string("a/") + f));
+    REQUIRE(!fa.empty());
+    CHECK(fa == slurp(dir.file(std::string("b/") + f)));
+  }
+  const auto file = xtf::read_all_pings(dir.file("a/pings.xtf"));
+  REQUIRE(file.pings.size() == pings);
+  for (std::size_t k = 0; k < file.pings.size(); ++k)
+    REQUIRE(file.pings[k].header.ping_number == k);
+  CHECK(count_lines(slurp(dir.file("a/truth.csv"))) == pings + 1);  // header + a row per ping
+  // 4 s of navigation: 3 PGNs at 10 Hz, 1 at 4 Hz, 4 at 1 Hz
+  CHECK(a.nav_frames == 3 * 40 + 16 + 4 * 4);
+}
+
+TEST_CASE("emulator: nav.log carries the vehicle's navigation within the PGN resolution") {
+  testing::TempDir dir("emu-nav");
+  run_max(dir.file("r"), 2, 3.0);
+  const config::Scenario sc = small_scenario();
+  const vehicle::Trajectory traj(sc.vehicle.trajectory);  // constant depth: no seabed needed
+  const vehicle::NavSensorModel nav(sc.vehicle.nav, sc.scene.seed);
+  const LocalTangentPlane ltp(
+      GeoPoint{sc.scene.origin.latitude_deg, sc.scene.origin.longitude_deg});
+  can::CandumpReader reader(dir.file("r/nav.log"));
+  int positions = 0, headings = 0, frames = 0;
+  while (const auto rec = reader.next()) {
+    ++frames;
+    REQUIRE(rec->channel == "vcan0");
+    const SimTime t = rec->t_ns - kMaxRateEpochUtcNs;  // stamped with epoch + sample time
+    const vehicle::NavSolution want = nav.measure(traj.state_at(t));
+    if (const auto p = n2k::decode<n2k::PositionRapidUpdate>(rec->frame)) {
+      const GeoPoint g = ltp.to_geodetic(want.north_m, want.east_m);
+      CHECK(*p->latitude_deg == Approx(g.latitude_deg).margin(0.51e-7));
+      CHECK(*p->longitude_deg == Approx(g.longitude_deg).margin(0.51e-7));
+      ++positions;
+    } else if (const auto h = n2k::decode<n2k::VesselHeading>(rec->frame)) {
+      CHECK(*h->heading_rad == Approx(want.heading).margin(0.51e-4));
+      ++headings;
+    }
+  }
+  CHECK(positions == 30);
+  CHECK(headings == 30);
+  CHECK(frames == 3 * 30 + 12 + 4 * 3);
+}
+
+TEST_CASE("emulator: a ping too large for one UDP datagram is refused, naming the limit") {
+  CHECK(max_udp_samples_per_side(1) == 32544);
+  CHECK(max_udp_samples_per_side(2) == 16272);
+  CHECK(max_udp_samples_per_side(4) == 8136);
+  // the limit is exact: at the limit the encoded ping fits, one more sample does not
+  for (int bps : {1, 2, 4}) {
+    const int n = max_udp_samples_per_side(bps);
+    const auto size = [&](int samples) {
+      return ((256 + 2 * (64 + samples * bps)) + 63) / 64 * 64;
+    };
+    CHECK(size(n) <= 65507);
+    CHECK(size(n + 1) > 65507);
+  }
+  config::Scenario sc = small_scenario();
+  sc.sonar.max_range_m = 200.0;
+  sc.sonar.bin_size_m = 0.01;  // 20000 uint16 samples per side
+  EmulatorOptions o;
+  o.udp = net::parse_host_port("127.0.0.1:9");
+  MonotonicClock clock;
+  try {
+    Emulator emu(sc, o, clock);
+    FAIL("accepted");
+  } catch (const std::invalid_argument& e) {
+    const std::string m = e.what();
+    CHECK(m.find("20000 samples per side") != std::string::npos);
+    CHECK(m.find("at most 16272 samples per side") != std::string::npos);
+    CHECK(m.find("uint16") != std::string::npos);
+  }
+  // without --udp it is fine (recording only)
+  o.udp.reset();
+  o.rate = parse_rate("max");
+  CHECK_NOTHROW(Emulator(sc, o, clock));
+}
+
+TEST_CASE("emulator --pose-from: pings follow the external pose and pause while it is stale") {
+  // a free UDP port for the pose source
+  std::uint16_t port = 0;
+  {
+    net::UdpReceiver probe(net::parse_host_port("127.0.0.1:0"));
+    port = probe.bound_port();
+  }
+  testing::TempDir dir("emu-hil");
+  const config::Scenario sc = small_scenario();
+  const LocalTangentPlane ltp(
+      GeoPoint{sc.scene.origin.latitude_deg, sc.scene.origin.longitude_deg});
+  const GeoPoint where = ltp.to_geodetic(10.0, -12.0);  // 12 m west of the planned line
+
+  EmulatorOptions o;
+  o.rate = parse_rate("realtime");
+  o.threads = 1;
+  o.duration_s = 2.5;
+  o.record_dir = dir.file("hil");
+  o.pose_from = "udp:127.0.0.1:" + std::to_string(port);
+  o.stale_after_s = 0.4;
+  o.stats_interval_s = 0;
+  MonotonicClock clock;
+  std::mutex mu;
+  std::vector<std::string> messages;
+  std::atomic<bool> started{false};
+  EmulatorHooks hooks;
+  hooks.message = [&](std::string_view m) {
+    std::lock_guard<std::mutex> lock(mu);
+    messages.emplace_back(m);
+    if (m.find("scene view") != std::string_view::npos) started = true;  // t = 0 follows
+  };
+  Emulator emu(sc, o, clock, hooks);
+
+  // the external vehicle: 1 s of poses at 50 Hz once the run starts, then silence
+  std::thread sender([&] {
+    net::UdpSender tx(net::parse_host_port("127.0.0.1:" + std::to_string(port)));
+    while (!started)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    for (std::uint32_t i = 0; i < 50; ++i) {
+      PoseMessage m;
+      m.sequence = i;
+      m.latitude_deg = where.latitude_deg;
+      m.longitude_deg = where.longitude_deg;
+      m.depth_m = 12.0;
+      m.heading_rad = 0.3;
+      m.pitch_rad = 0.0;
+      m.roll_rad = 0.0;
+      tx.send(encode_pose_message(m));
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  });
+  const RunStats s = emu.run();
+  sender.join();
+
+  CHECK(s.pings_sent > 0);
+  CHECK(s.pings_stale > 0);
+  CHECK(s.stale_episodes >= 1);
+  CHECK(s.nav_frames_withheld > 0);
+  // one warning per episode without a fresh pose: possibly "no pose received yet" (if ping 0
+  // came before the first message), then "stale" once the sender stopped
+  std::size_t warnings = 0, stale_warnings = 0;
+  for (const auto& m : messages) {
+    if (m.rfind("warning", 0) != 0) continue;
+    ++warnings;
+    if (m.find("stale") != std::string::npos) ++stale_warnings;
+  }
+  CHECK(warnings == s.stale_episodes);
+  CHECK(stale_warnings == 1);
+  // every recorded ping was rendered at the external pose, and says so in its navigation
+  const auto file = xtf::read_all_pings(dir.file("hil/pings.xtf"));
+  REQUIRE(file.pings.size() == s.pings_sent);
+  for (const auto& p : file.pings) {
+    CHECK(p.header.sensor_y == Approx(where.latitude_deg).margin(1e-9));
+    CHECK(p.header.sensor_x == Approx(where.longitude_deg).margin(1e-9));
+    CHECK(p.header.sensor_depth_m == Approx(12.0f));
+    CHECK(p.header.sensor_heading_deg == Approx(0.3 * 180.0 / M_PI).margin(1e-4));
+  }
+  const std::string truth = slurp(dir.file("hil/truth.csv"));
+  CHECK(truth.find(",external\n") != std::string::npos);
+  CHECK(truth.find(",trajectory\n") == std::string::npos);
+}

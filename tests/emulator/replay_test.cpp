@@ -1,0 +1,595 @@
+#include "emulator/replay.h"
+
+#include <atomic>
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "drivers/can/candump_log.h"
+#include "drivers/can/socketcand_server.h"
+#include "drivers/net/udp_receiver.h"
+#include "drivers/net/udp_sender.h"
+#include "drivers/xtf/xtf_file.h"
+#include "tests/support/temp_dir.h"
+
+using namespace sonarloop;
+using namespace sonarloop::emulator;
+using sonarloop::testing::TempDir;
+
+namespace {
+
+const std::string kRealXtf =
+    std::string(SONARLOOP_SOURCE_DIR) + "/tests/data/xtf/scotsman-iver2.xtf";
+constexpr std::size_t kRealPings = 461;
+constexpr std::int64_t kMs = 1'000'000;
+
+// A simulated clock: sleep_until() jumps to the deadline. Every send then happens exactly at its
+// deadline, so the deadlines themselves can be checked (no wall clock involved).
+class SimulatedClock final : public ReplayClock {
+ public:
+  explicit SimulatedClock(std::int64_t start_ns = 1'000'000'000'000) : now_(start_ns) {}
+  std::int64_t now_ns() override { return now_; }
+  void sleep_until(std::int64_t t_ns) override {
+    ++sleeps;
+    if (t_ns > now_) now_ = t_ns;
+  }
+  std::int64_t now_ = 0;
+  int sleeps = 0;
+};
+
+std::vector<std::uint8_t> slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(bytes.data()),
+            static_cast<std::streamsize>(bytes.size()));
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
+
+XtfPacketTime ping_at(std::optional<std::int64_t> t_ms, double spp_s = 0.0) {
+  XtfPacketTime p;
+  p.is_ping = true;
+  if (t_ms) p.time_utc_ns = 1'700'000'000'000'000'000 + *t_ms * kMs;
+  p.seconds_per_ping_s = spp_s;
+  return p;
+}
+
+std::vector<std::int64_t> ms_of(const XtfSchedule& s) {
+  std::vector<std::int64_t> out;
+  for (std::int64_t t : s.t_ns)
+    out.push_back(t / kMs);
+  return out;
+}
+
+bool is_file_header_datagram(const std::vector<std::uint8_t>& d) {
+  return d.size() == 1024 && d[0] == 0x7B;
+}
+
+// A CAN transport that records what it is given, with the clock's time at each send.
+class RecordingTransport final : public can::CanTransport {
+ public:
+  explicit RecordingTransport(ReplayClock* clock = nullptr) : clock_(clock) {}
+  void send(const can::CanFrame& frame, std::int64_t t_ns) override {
+    frames.push_back({t_ns, frame});
+    sent_at.push_back(clock_ ? clock_->now_ns() : 0);
+  }
+  std::string describe() const override { return "recording"; }
+  void flush() override { ++flushes; }
+  std::vector<can::TimedCanFrame> frames;
+  std::vector<std::int64_t> sent_at;
+  int flushes = 0;
+
+ private:
+  ReplayClock* clock_;
+};
+
+// A small candump log: 40 frames at irregular intervals, plus one remote and one FD frame
+// (not replayable) and one frame logged earlier than its predecessor.
+struct TestLog {
+  std::string text;
+  std::vector<can::TimedCanFrame> data_frames;  // in file order
+};
+
+TestLog make_test_log() {
+  TestLog log;
+  std::int64_t t_us = 1'699'999'999'000'000;
+  char line[128];
+  for (int i = 0; i < 40; ++i) {
+    t_us += 1000 + (i % 7) * 2500;  // 1..16 ms steps
+    if (i == 25) t_us -= 15000;     // logged earlier than the frame before
+    can::TimedCanFrame f;
+    f.t_ns = t_us * 1000;
+    f.frame.id = 0x09F80100u + static_cast<std::uint32_t>(i);
+    f.frame.len = static_cast<std::uint8_t>(i % 9);
+    std::string hex;
+    for (int k = 0; k < f.frame.len; ++k) {
+      f.frame.data[static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(i * 11 + k);
+      char b[4];
+      std::snprintf(b, sizeof b, "%02X", f.frame.data[static_cast<std::size_t>(k)]);
+      hex += b;
+    }
+    std::snprintf(line, sizeof line, "(%lld.%06lld) vcan0 %08X#%s\n",
+                  static_cast<long long>(t_us / 1'000'000),
+                  static_cast<long long>(t_us % 1'000'000), f.frame.id, hex.c_str());
+    log.text += line;
+    log.data_frames.push_back(f);
+    // at the same time as the frame before them
+    std::snprintf(line, sizeof line, "(%lld.%06lld) vcan0 ",
+                  static_cast<long long>(t_us / 1'000'000),
+                  static_cast<long long>(t_us % 1'000'000));
+    if (i == 10) log.text += line + std::string("123#R\n");
+    if (i == 20) log.text += line + std::string("18F11300##10102030405060708\n");
+  }
+  return log;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// XTF schedule (pure)
+
+TEST_CASE("xtf schedule: increasing ping times are kept as recorded") {
+  const std::vector<XtfPacketTime> p = {ping_at(0), ping_at(100), ping_at(220), ping_at(330)};
+  const XtfSchedule s = make_xtf_schedule(p);
+  CHECK(ms_of(s) == std::vector<std::int64_t>{0, 100, 220, 330});
+  CHECK(s.fallback_interval_ns == 110 * kMs);  // median of 100, 120, 110
+  CHECK(s.span_ns == 330 * kMs);
+  CHECK(s.pass_period_ns == 440 * kMs);
+  CHECK(s.pings == 4);
+  CHECK(s.spread_pings == 0);
+  CHECK(s.fallback_pings == 0);
+}
+
+TEST_CASE("xtf schedule: pings sharing a 1/100 s time are spread evenly up to the next time") {
+  // a 100 Hz-ish sonar logged at 10 ms resolution: three pings at 0, one at 30, two at 40, one at
+  // 50
+  const std::vector<XtfPacketTime> p = {ping_at(0),  ping_at(0),  ping_at(0), ping_at(30),
+                                        ping_at(40), ping_at(40), ping_at(50)};
+  const XtfSchedule s = make_xtf_schedule(p);
+  CHECK(ms_of(s) == std::vector<std::int64_t>{0, 10, 20, 30, 40, 45, 50});
+  CHECK(s.spread_pings == 3);
+  CHECK(s.fallback_pings == 0);
+  CHECK(s.span_ns == 50 * kMs);
+}
+
+TEST_CASE("xtf schedule: a run of equal times at the end steps by the median interval") {
+  const std::vector<XtfPacketTime> p = {ping_at(0), ping_at(10), ping_at(20), ping_at(20),
+                                        ping_at(20)};
+  const XtfSchedule s = make_xtf_schedule(p);
+  CHECK(s.fallback_interval_ns == 10 * kMs);
+  CHECK(ms_of(s) == std::vector<std::int64_t>{0, 10, 20, 30, 40});
+  CHECK(s.fallback_pings == 2);
+}
+
+TEST_CASE("xtf schedule: a backward or missing time continues after the fallback interval") {
+  // the clock steps back 150 ms after ping 2; ping 5 has no valid time
+  const std::vector<XtfPacketTime> p = {ping_at(0),  ping_at(100), ping_at(200),
+                                        ping_at(50), ping_at(150), ping_at(std::nullopt),
+                                        ping_at(250)};
+  const XtfSchedule s = make_xtf_schedule(p);
+  CHECK(s.fallback_interval_ns == 100 * kMs);
+  // 3: 200 + 100 (fallback); 4: +100 as recorded; 5: +100 (fallback); 6: +100 (fallback: the
+  // time before it is missing, so the recorded step is unknown)
+  CHECK(ms_of(s) == std::vector<std::int64_t>{0, 100, 200, 300, 400, 500, 600});
+  CHECK(s.fallback_pings == 3);
+}
+
+TEST_CASE("xtf schedule: SecondsPerPing is the fallback where set; without any time, 0.1 s") {
+  const std::vector<XtfPacketTime> with_spp = {ping_at(0, 0.25), ping_at(0, 0.25),
+                                               ping_at(0, 0.25)};
+  CHECK(ms_of(make_xtf_schedule(with_spp)) == std::vector<std::int64_t>{0, 250, 500});
+  const std::vector<XtfPacketTime> none = {ping_at(std::nullopt), ping_at(std::nullopt),
+                                           ping_at(std::nullopt)};
+  const XtfSchedule s = make_xtf_schedule(none);
+  CHECK(s.fallback_interval_ns == kDefaultPingIntervalNs);
+  CHECK(ms_of(s) == std::vector<std::int64_t>{0, 100, 200});
+}
+
+TEST_CASE("xtf schedule: other packets go with the ping before them (time 0 before the first)") {
+  XtfPacketTime other;
+  const std::vector<XtfPacketTime> p = {other, ping_at(500), other, other, ping_at(620), other};
+  const XtfSchedule s = make_xtf_schedule(p);
+  CHECK(ms_of(s) == std::vector<std::int64_t>{0, 0, 0, 0, 120, 120});
+  CHECK(s.pings == 2);
+  CHECK(make_xtf_schedule({}).t_ns.empty());
+}
+
+TEST_CASE("xtf schedule: the real recording's 461 ping times increase and are kept") {
+  const XtfTimeline tl = read_xtf_timeline(kRealXtf);
+  CHECK(tl.file_header.size() == 1024);
+  REQUIRE(tl.packet_bytes.size() == kRealPings);
+  CHECK(tl.schedule.pings == kRealPings);
+  CHECK(tl.schedule.spread_pings == 0);
+  CHECK(tl.schedule.fallback_pings == 0);
+  CHECK(tl.schedule.span_ns == 52'230 * kMs);            // 21:13:08.00 .. 21:14:00.23
+  CHECK(tl.schedule.fallback_interval_ns == 110 * kMs);  // steps of 0.10-0.14 s, median 0.11
+}
+
+// ---------------------------------------------------------------------------------------------
+// XTF replay
+
+TEST_CASE("replay xtf: the real recording at --rate max over UDP on 127.0.0.1 arrives intact") {
+  const xtf::XtfRawFile raw = xtf::read_raw_packets(kRealXtf);
+  REQUIRE(raw.packets.size() == kRealPings);
+  // room for the whole stream in the socket buffer (granted up to 2 x net.core.rmem_max), and a
+  // reader running alongside in case the kernel grants less
+  net::UdpReceiver rx(net::HostPort{"127.0.0.1", 0}, 8 << 20);
+  std::vector<std::vector<std::uint8_t>> got;
+  std::atomic<bool> sender_done{false};
+  std::thread reader([&] {
+    std::vector<std::uint8_t> buf(net::kMaxUdpDatagramBytes + 1);
+    std::size_t pings = 0;
+    for (;;) {
+      const auto d = rx.receive(buf, 2000);
+      if (!d) {
+        if (sender_done) return;  // 2 s of silence after the last send
+        continue;
+      }
+      got.emplace_back(buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(d->size));
+      if (!is_file_header_datagram(got.back()) && ++pings == kRealPings) return;
+    }
+  });
+  net::UdpSender tx(net::HostPort{"127.0.0.1", rx.bound_port()});
+  MonotonicReplayClock clock;
+  ReplayOptions options;
+  options.rate.max = true;
+  const ReplaySummary s = replay_xtf(
+      kRealXtf, [&](std::span<const std::uint8_t> d) { return tx.send(d); }, clock, options);
+  sender_done = true;
+  reader.join();
+
+  CHECK(s.packets_sent == kRealPings);
+  CHECK(s.pings_sent == kRealPings);
+  CHECK(s.passes_completed == 1);
+  CHECK(s.dropped == 0);
+  CHECK(s.file_headers_sent >= 2);
+  CHECK(s.bytes_sent == s.file_headers_sent * 1024 + (slurp(kRealXtf).size() - 1024));
+  REQUIRE(!got.empty());
+  CHECK(got.front() == raw.file_header);  // the file header datagram comes first
+  std::vector<std::uint8_t> rebuilt = raw.file_header;
+  std::size_t k = 0;
+  std::size_t headers = 0;
+  for (const auto& d : got) {
+    if (is_file_header_datagram(d)) {
+      CHECK(d == raw.file_header);
+      ++headers;
+      continue;
+    }
+    REQUIRE(k < raw.packets.size());
+    INFO("ping datagram " << k);
+    CHECK(d == raw.packets[k].bytes);  // in order, byte for byte
+    rebuilt.insert(rebuilt.end(), d.begin(), d.end());
+    ++k;
+  }
+  CHECK(k == kRealPings);
+  CHECK(headers == s.file_headers_sent);
+  // file header + the ping datagrams == the file
+  CHECK(rebuilt == slurp(kRealXtf));
+}
+
+TEST_CASE("replay xtf: sends happen at the pings' recorded times / rate (simulated clock)") {
+  const XtfTimeline tl = read_xtf_timeline(kRealXtf);
+  const xtf::XtfFileContents contents = xtf::read_all_pings(kRealXtf);
+  const std::int64_t t0 = *xtf::time_utc_ns(contents.pings.front().header);
+  SimulatedClock clock;
+  const std::int64_t start = clock.now_ns();
+  std::vector<std::int64_t> ping_sent_at;
+  std::vector<std::int64_t> header_sent_at;
+  ReplayOptions options;
+  options.rate.factor = 2.0;
+  options.loops = 2;
+  const ReplaySummary s = replay_xtf(
+      kRealXtf,
+      [&](std::span<const std::uint8_t> d) {
+        (d.size() == 1024 && d[0] == 0x7B ? header_sent_at : ping_sent_at)
+            .push_back(clock.now_ns() - start);
+        return true;
+      },
+      clock, options);
+  REQUIRE(ping_sent_at.size() == 2 * kRealPings);
+  CHECK(s.passes_completed == 2);
+  CHECK(s.max_late_ns == 0);
+  CHECK(s.paced_sends == 2 * kRealPings);
+  // pass 0: recorded time / 2; pass 1 starts one median interval (0.11 s) after the last ping
+  for (std::size_t k = 0; k < kRealPings; ++k) {
+    const std::int64_t rel = *xtf::time_utc_ns(contents.pings[k].header) - t0;
+    INFO("ping " << k);
+    CHECK(ping_sent_at[k] == rel / 2);
+    CHECK(ping_sent_at[kRealPings + k] == (tl.schedule.pass_period_ns + rel) / 2);
+  }
+  CHECK(tl.schedule.pass_period_ns == (52'230 + 110) * kMs);
+  CHECK(s.wall_ns == (2 * 52'230 + 110) * kMs / 2);
+  // the file header: at each pass start and then after every >= 1 s of recording time
+  REQUIRE(header_sent_at.size() == s.file_headers_sent);
+  CHECK(header_sent_at.front() == 0);
+  const std::int64_t pass1_start = tl.schedule.pass_period_ns / 2;
+  int pass_starts = 0;
+  for (std::size_t i = 1; i < header_sent_at.size(); ++i) {
+    const std::int64_t gap_recording = 2 * (header_sent_at[i] - header_sent_at[i - 1]);
+    INFO("header " << i);
+    if (header_sent_at[i] == pass1_start) {
+      ++pass_starts;  // always sent at a pass start
+    } else {
+      CHECK(gap_recording >= 1000 * kMs);
+    }
+    CHECK(gap_recording <= 1000 * kMs + 140 * kMs);  // within one ping step of the period
+  }
+  CHECK(pass_starts == 1);
+}
+
+TEST_CASE("replay xtf: a stop request ends the replay after the current packet") {
+  SimulatedClock clock;
+  std::atomic<bool> stop{false};
+  int pings = 0;
+  ReplayOptions options;
+  options.stop = &stop;
+  const ReplaySummary s = replay_xtf(
+      kRealXtf,
+      [&](std::span<const std::uint8_t> d) {
+        if (d.size() != 1024 && ++pings == 10) stop = true;
+        return true;
+      },
+      clock, options);
+  CHECK(s.stopped);
+  CHECK(s.packets_sent == 10);
+  CHECK(pings == 10);
+}
+
+TEST_CASE("replay xtf: packets too large for a datagram are skipped and reported") {
+  SimulatedClock clock;
+  std::vector<std::string> warnings;
+  ReplayOptions options;
+  options.rate.max = true;
+  options.max_datagram_bytes = 4000;  // the real pings have 4480 bytes
+  options.on_warning = [&](const std::string& w) { warnings.push_back(w); };
+  int sent = 0;
+  const ReplaySummary s = replay_xtf(
+      kRealXtf, [&](std::span<const std::uint8_t>) { return ++sent > 0; }, clock, options);
+  CHECK(s.skipped == kRealPings);
+  CHECK(s.packets_sent == 0);
+  CHECK(static_cast<std::uint64_t>(sent) == s.file_headers_sent);
+  REQUIRE(warnings.size() == 1);
+  CHECK_THAT(warnings[0], Catch::Contains("byte offset 1024") && Catch::Contains("4480 bytes"));
+}
+
+TEST_CASE("replay xtf: refused datagrams (nobody listening) are counted, not fatal") {
+  // bind a port, learn its number, close it: sends to it are refused
+  std::uint16_t port = 0;
+  {
+    net::UdpReceiver probe(net::HostPort{"127.0.0.1", 0});
+    port = probe.bound_port();
+  }
+  net::UdpSender tx(net::HostPort{"127.0.0.1", port});
+  SimulatedClock clock;
+  std::vector<std::string> warnings;
+  ReplayOptions options;
+  options.rate.max = true;
+  options.on_warning = [&](const std::string& w) { warnings.push_back(w); };
+  const ReplaySummary s = replay_xtf(
+      kRealXtf, [&](std::span<const std::uint8_t> d) { return tx.send(d); }, clock, options);
+  CHECK(s.packets_sent == kRealPings);
+  CHECK(s.dropped > 0);
+  CHECK(warnings.size() == 1);
+}
+
+TEST_CASE("replay xtf: truncated, corrupt and missing files are errors before anything is sent") {
+  TempDir dir("replay-xtf-bad");
+  const std::vector<std::uint8_t> file = slurp(kRealXtf);
+  int sent = 0;
+  const DatagramSink count = [&](std::span<const std::uint8_t>) { return ++sent > 0; };
+  SimulatedClock clock;
+
+  // cut inside the 11th packet
+  const std::uint64_t packet10 = 1024 + 10 * 4480;
+  write_bytes(dir.file("truncated.xtf"),
+              std::vector<std::uint8_t>(file.begin(), file.begin() + packet10 + 100));
+  try {
+    replay_xtf(dir.file("truncated.xtf"), count, clock);
+    FAIL("no error for a truncated file");
+  } catch (const xtf::XtfFormatError& e) {
+    CHECK(e.offset() == packet10);
+    CHECK_THAT(e.what(), Catch::Contains("truncated.xtf") &&
+                             Catch::Contains("byte offset " + std::to_string(packet10)) &&
+                             Catch::Contains("runs past the end of the file"));
+  }
+
+  // bad magic in the 6th packet
+  std::vector<std::uint8_t> corrupt = file;
+  const std::uint64_t packet5 = 1024 + 5 * 4480;
+  corrupt[packet5] = 0x12;
+  write_bytes(dir.file("corrupt.xtf"), corrupt);
+  try {
+    replay_xtf(dir.file("corrupt.xtf"), count, clock);
+    FAIL("no error for a corrupt file");
+  } catch (const xtf::XtfFormatError& e) {
+    CHECK(e.offset() == packet5);
+    CHECK_THAT(e.what(), Catch::Contains("bad magic"));
+  }
+
+  // a file header cut short
+  write_bytes(dir.file("short.xtf"), std::vector<std::uint8_t>(file.begin(), file.begin() + 700));
+  CHECK_THROWS_AS(replay_xtf(dir.file("short.xtf"), count, clock), xtf::XtfFormatError);
+
+  CHECK_THROWS_WITH(replay_xtf(dir.file("missing.xtf"), count, clock),
+                    Catch::Contains("missing.xtf"));
+  CHECK(sent == 0);
+}
+
+TEST_CASE("replay rate: parsing") {
+  CHECK_FALSE(parse_replay_rate("original").max);
+  CHECK(parse_replay_rate("original").factor == 1.0);
+  CHECK(parse_replay_rate("max").max);
+  CHECK(parse_replay_rate("2.5").factor == 2.5);
+  CHECK(to_string(parse_replay_rate("0.5")) == "x0.5");
+  CHECK_THROWS_WITH(parse_replay_rate("0"), Catch::Contains("expected original, max"));
+  CHECK_THROWS_AS(parse_replay_rate("fast"), std::invalid_argument);
+  CHECK_THROWS_AS(parse_replay_rate("-1"), std::invalid_argument);
+  CHECK_THROWS_AS(parse_replay_rate("nan"), std::invalid_argument);
+}
+
+// ---------------------------------------------------------------------------------------------
+// candump replay
+
+TEST_CASE("replay candump: a log:FILE transport gets the same frames with their logged times") {
+  TempDir dir("replay-candump-log");
+  const TestLog log = make_test_log();
+  write_text(dir.file("in.log"), log.text);
+  auto out = can::open_can_transport("log:" + dir.file("out.log"));
+  can::CanTransport* transports[] = {out.get()};
+  MonotonicReplayClock clock;
+  ReplayOptions options;
+  options.rate.max = true;
+  std::vector<std::string> warnings;
+  options.on_warning = [&](const std::string& w) { warnings.push_back(w); };
+  const ReplaySummary s = replay_candump(dir.file("in.log"), transports, clock, options);
+  out.reset();  // closes the file
+  CHECK(s.packets_per_pass == 42);
+  CHECK(s.packets_sent == 40);
+  CHECK(s.skipped == 2);       // the remote and the FD frame
+  CHECK(s.out_of_order == 1);  // frame 25
+  REQUIRE(warnings.size() == 1);
+  CHECK_THAT(warnings[0], Catch::Contains("in.log:12"));
+
+  can::CandumpReader reader(dir.file("out.log"));
+  std::size_t k = 0;
+  while (const auto rec = reader.next()) {
+    REQUIRE(k < log.data_frames.size());
+    INFO("frame " << k);
+    CHECK(rec->frame == log.data_frames[k].frame);
+    CHECK(rec->t_ns == log.data_frames[k].t_ns);  // the logged time, not the replay's
+    CHECK(rec->channel == "vcan0");
+    ++k;
+  }
+  CHECK(k == log.data_frames.size());
+}
+
+TEST_CASE("replay candump: frames go out at their logged offsets / rate (simulated clock)") {
+  TempDir dir("replay-candump-timing");
+  const TestLog log = make_test_log();
+  write_text(dir.file("in.log"), log.text);
+  SimulatedClock clock;
+  const std::int64_t start = clock.now_ns();
+  RecordingTransport a(&clock), b(&clock);
+  can::CanTransport* transports[] = {&a, &b};
+  ReplayOptions options;
+  options.rate.factor = 0.5;  // half speed
+  options.loops = 2;
+  options.on_warning = [](const std::string&) {};
+  const ReplaySummary s = replay_candump(dir.file("in.log"), transports, clock, options);
+  REQUIRE(a.frames.size() == 80);
+  CHECK(b.frames.size() == 80);
+  CHECK(a.flushes == 1);
+  const std::int64_t t0 = log.data_frames.front().t_ns;
+  std::int64_t span = 0;
+  for (const auto& f : log.data_frames)
+    span = std::max(span, f.t_ns - t0);
+  CHECK(s.recording_span_ns == span);
+  std::int64_t previous = 0;
+  for (std::size_t i = 0; i < 80; ++i) {
+    const auto& want = log.data_frames[i % 40];
+    const std::int64_t pass_base = i < 40 ? 0 : span;
+    // absolute deadlines; a frame logged before its predecessor goes out at once
+    const std::int64_t deadline = (pass_base + (want.t_ns - t0)) * 2;
+    const std::int64_t expected = std::max(deadline, previous);
+    INFO("frame " << i);
+    CHECK(a.frames[i].frame == want.frame);
+    CHECK(a.frames[i].t_ns == want.t_ns);
+    CHECK(a.sent_at[i] - start == expected);
+    previous = a.sent_at[i] - start;
+  }
+  CHECK(s.passes_completed == 2);
+}
+
+TEST_CASE("replay candump: a malformed line is an error with its line number, nothing sent") {
+  TempDir dir("replay-candump-bad");
+  TestLog log = make_test_log();
+  // line 7 becomes garbage
+  std::string text;
+  int line = 0;
+  std::size_t pos = 0;
+  while (pos < log.text.size()) {
+    const std::size_t end = log.text.find('\n', pos);
+    ++line;
+    text += line == 7 ? std::string("(1699999999.1) vcan0 09F80107#0G")
+                      : log.text.substr(pos, end - pos);
+    text += '\n';
+    pos = end + 1;
+  }
+  write_text(dir.file("bad.log"), text);
+  SimulatedClock clock;
+  RecordingTransport t(&clock);
+  can::CanTransport* transports[] = {&t};
+  CHECK_THROWS_WITH(replay_candump(dir.file("bad.log"), transports, clock),
+                    Catch::Contains("bad.log:7:"));
+  CHECK(t.frames.empty());
+  CHECK_THROWS_WITH(replay_candump(dir.file("missing.log"), transports, clock),
+                    Catch::Contains("missing.log") && Catch::Contains("cannot open"));
+}
+
+TEST_CASE("replay candump: python-can reads the replay from our socketcand server") {
+  TempDir dir("replay-candump-socketcand");
+  const TestLog log = make_test_log();
+  write_text(dir.file("in.log"), log.text);
+  // python-can's socketcand interface (Debian python3-can 4.1) compares every frame with the log
+  // (python-can's own CanutilsLogReader), timestamps included
+  write_text(dir.file("peer.py"), R"(import logging, sys, time
+import can
+logging.getLogger("can.interfaces.socketcand.socketcand").setLevel(logging.ERROR)
+port, log = int(sys.argv[1]), sys.argv[2]
+want = [m for m in can.CanutilsLogReader(log) if not m.is_remote_frame and not m.is_fd]
+bus = can.Bus(interface="socketcand", host="127.0.0.1", port=port, channel="vcan0")
+got = []
+deadline = time.monotonic() + 60
+while len(got) < len(want) and time.monotonic() < deadline:
+    m = bus.recv(timeout=1.0)
+    if m is not None:
+        got.append(m)
+bus.shutdown()
+bad = 0
+for i, (g, w) in enumerate(zip(got, want)):
+    if g.arbitration_id != w.arbitration_id or bytes(g.data) != bytes(w.data) or \
+            abs(g.timestamp - w.timestamp) > 1e-6:
+        print(f"frame {i}: got {g.arbitration_id:08X} {bytes(g.data).hex()} {g.timestamp:.6f}, "
+              f"want {w.arbitration_id:08X} {bytes(w.data).hex()} {w.timestamp:.6f}")
+        bad += 1
+print(f"python-can: {len(got)}/{len(want)} frames, {bad} mismatches", flush=True)
+sys.exit(0 if len(got) == len(want) and bad == 0 else 1)
+)");
+  can::SocketcandServer server(net::HostPort{"127.0.0.1", 0});
+  std::atomic<int> rc{-2};
+  std::thread python([&] {
+    rc = sonarloop::testing::run_command(std::string(SONARLOOP_PYTHON) + " " + dir.file("peer.py") +
+                                         " " + std::to_string(server.bound_port()) + " " +
+                                         dir.file("in.log"));
+  });
+  // wait (bounded) for python-can to stream
+  for (int i = 0; i < 6000 && server.streaming_clients() == 0 && rc == -2; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  if (server.streaming_clients() == 0) {
+    python.join();
+    FAIL("python-can did not connect (exit code " << rc << ")");
+  }
+  can::CanTransport* transports[] = {&server};
+  MonotonicReplayClock clock;
+  ReplayOptions options;  // original timing: ~0.3 s
+  options.on_warning = [](const std::string&) {};
+  const ReplaySummary s = replay_candump(dir.file("in.log"), transports, clock, options);
+  python.join();
+  CHECK(s.packets_sent == 40);
+  CHECK(rc == 0);
+  CHECK(server.stats().frames_sent == 40);
+}

@@ -1,0 +1,297 @@
+#include "sim/render/ping_renderer.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "sim/acoustics/apl_sediment.h"
+#include "sim/acoustics/beam_pattern.h"
+#include "sim/acoustics/bottom_backscatter_apl.h"
+#include "sim/acoustics/spreading.h"
+
+using namespace sonarloop;
+using namespace sonarloop::render;
+
+namespace {
+
+constexpr double kDepth = 20.0;
+
+scene::SceneDesc flat_scene(const char* sediment, double spacing = 0.05) {
+  scene::SceneDesc d;
+  d.seed = 3;
+  d.water.depth_m = kDepth;
+  d.seabed.origin_m = Vec2(-60, -60);
+  d.seabed.extent_m = Vec2(120, 120);
+  d.seabed.grid_spacing_m = spacing;
+  d.seabed.elevation.rms_m = 0.0;
+  scene::RegionDesc r;
+  r.sediment = *seabed::find_sediment(sediment);
+  d.seabed.regions = {r};
+  return d;
+}
+
+SonarDesc test_sonar() {
+  SonarDesc s;
+  s.frequency_hz = 100e3;
+  s.source_level_db = 210.0;
+  s.array_length_m = 1.0;
+  s.array_height_m = 0.03;
+  s.depression_deg = 20.0;
+  s.max_range_m = 40.0;
+  s.bin_size_m = 0.05;
+  s.speckle = false;
+  s.noise = false;
+  return s;
+}
+
+Pose level_pose(double altitude, double heading_deg = 0.0) {
+  Pose p;
+  p.position_W = Vec3(0.0, 0.0, kDepth - altitude);
+  p.yaw = heading_deg * std::numbers::pi / 180.0;
+  return p;
+}
+
+double db(double x) {
+  return 10.0 * std::log10(x);
+}
+
+}  // namespace
+
+TEST_CASE("render: a flat homogeneous seabed follows SL - 2TL + Sb + 10 log A + beam pattern") {
+  for (auto model : {AlongTrackModel::kBeam, AlongTrackModel::kStrip}) {
+    const scene::SceneDesc desc = flat_scene("very_coarse_sand");
+    const scene::Scene sc(desc);
+    SonarDesc sd = test_sonar();
+    sd.along_track = model;
+    const SonarSetup setup = make_sonar_setup(sd, desc.water);
+    const PingRenderer renderer(sc, setup);
+    const Pose pose = level_pose(8.0);
+    const auto view = sc.view(renderer.swath_region(pose), 2);
+    PingScratch scratch;
+    PingLines lines;
+    renderer.render(*view, pose, 1, 0, RenderOptions{}, scratch, lines);
+    CHECK(lines.altitude_m == Approx(8.0).margin(1e-3));
+    const auto sed = acoustics::apl_sediment(*seabed::find_sediment("very_coarse_sand"));
+    int checked = 0;
+    double worst = 0.0;
+    for (int k = 0; k < setup.bins; ++k) {
+      const double r = (k + 0.5) * sd.bin_size_m;
+      if (r < 1.5 * 8.0 || r > 0.95 * sd.max_range_m) continue;
+      const double grazing = std::asin(8.0 / r);
+      const double tl = acoustics::transmission_loss_db(r, setup.alpha_db_per_m);
+      const double sb = acoustics::apl_backscatter_db(grazing, sd.frequency_hz, sed);
+      // the cell: a slant bin covers bin/cos(grazing) of ground; along track a line array's
+      // beam spans r·φ at slant range r whatever the depression (the cone sin ψ = const), and a
+      // strip spans its width. (physics.md's cosine cancellation in A = (cτ/2)·φ·r holds for a
+      // beam whose width φ is an azimuth in the horizontal plane, not for a line array.)
+      const double along = model == AlongTrackModel::kStrip
+                               ? setup.along_track_resolution_m
+                               : setup.horizontal_beam_integral_rad * r;
+      const double area = sd.bin_size_m / std::cos(grazing) * along;
+      const double gv = acoustics::two_way_pattern_db(grazing - setup.array.depression_rad,
+                                                      sd.array_height_m, setup.wavelength_m);
+      const double expected = sd.source_level_db - 2.0 * tl + sb + db(area) + gv;
+      const double got = db(lines.stbd[static_cast<std::size_t>(k)]);
+      const double got_port = db(lines.port[static_cast<std::size_t>(k)]);
+      INFO("model " << int(model) << " bin " << k << " r " << r << " expected " << expected
+                    << " got " << got);
+      CHECK(std::abs(got - expected) < 1.0);
+      CHECK(std::abs(got_port - expected) < 1.0);
+      worst = std::max(worst, std::abs(got - expected));
+      ++checked;
+    }
+    CHECK(checked > 500);
+    WARN("flat seabed oracle, along-track model " << int(model) << ": worst error " << worst
+                                                  << " dB");
+  }
+}
+
+TEST_CASE("render: first seabed return at the altitude (nadir gap), nothing beyond max range") {
+  const scene::SceneDesc desc = flat_scene("medium_sand");
+  const scene::Scene sc(desc);
+  const SonarSetup setup = make_sonar_setup(test_sonar(), desc.water);
+  const PingRenderer renderer(sc, setup);
+  for (double altitude : {4.0, 9.3}) {
+    const Pose pose = level_pose(altitude);
+    const auto view = sc.view(renderer.swath_region(pose), 2);
+    PingScratch scratch;
+    PingLines lines;
+    renderer.render(*view, pose, 1, 0, RenderOptions{}, scratch, lines);
+    int first = -1;
+    for (int k = 0; k < setup.bins; ++k) {
+      if (lines.stbd[static_cast<std::size_t>(k)] > 0.0f) {
+        first = k;
+        break;
+      }
+    }
+    CHECK(std::abs(first - altitude / 0.05) <= 1.0);
+    CHECK(lines.stbd.size() == static_cast<std::size_t>(setup.bins));
+  }
+}
+
+TEST_CASE("render: nothing beyond the maximum range reaches the line") {
+  // a box whose nearest point is 1 m beyond the 40 m maximum slant range changes nothing
+  const double a = 8.0;
+  scene::SceneDesc with = flat_scene("medium_sand");
+  scene::TargetDesc box;
+  box.type = targets::TargetType::kBox;
+  box.name = "far-box";
+  const double x_near = std::sqrt(41.0 * 41.0 - (a - 0.4) * (a - 0.4));
+  box.position_m = Vec2(0.0, x_near + 0.35);
+  with.targets = {box};
+  const scene::SceneDesc without = flat_scene("medium_sand");
+  const scene::Scene s_with(with), s_without(without);
+  const SonarSetup setup = make_sonar_setup(test_sonar(), with.water);
+  const PingRenderer r_with(s_with, setup), r_without(s_without, setup);
+  const Pose pose = level_pose(a);
+  // views wider than the swath, so that the box is in the scene the rays are traced in
+  const scene::Box2 wide{Vec2(-50, -50), Vec2(50, 50)};
+  const auto v_with = s_with.view(wide, 2);
+  const auto v_without = s_without.view(wide, 2);
+  REQUIRE(v_with->target_count() == 1);
+  PingScratch scratch;
+  PingLines l_with, l_without;
+  RenderOptions opt;
+  opt.truth = true;
+  r_with.render(*v_with, pose, 1, 0, opt, scratch, l_with);
+  CHECK(scratch.traces.empty());  // no ray reached it
+  r_without.render(*v_without, pose, 1, 0, opt, scratch, l_without);
+  CHECK(l_with.stbd == l_without.stbd);
+  CHECK(l_with.stbd.size() == static_cast<std::size_t>(setup.bins));
+}
+
+TEST_CASE("render: a box on a flat seabed: highlight and shadow at the analytic slant ranges") {
+  // geometry (flat seabed, sensor altitude a, box of height H whose near face is at ground range
+  // x_n and far face at x_f = x_n + w, faces square to the beam):
+  //   highlight starts at the near top edge:      r_h = sqrt((a - H)^2 + x_n^2)
+  //   the last target echo is the far top edge:   r_t = sqrt((a - H)^2 + x_f^2)
+  //   the top edge's shadow reaches the seabed at x_s = x_f · a / (a - H), slant r_s = sqrt(a^2 +
+  //   x_s^2) so the shadow occupies slant ranges (r_t, r_s) (when the seabed in front, up to
+  //   sqrt(a^2 + x_n^2), ends before r_t, as here)
+  scene::SceneDesc desc = flat_scene("medium_sand");
+  scene::TargetDesc box;
+  box.type = targets::TargetType::kBox;  // 0.7 x 0.7 x 0.4
+  box.name = "box";
+  const double a = 10.0, h = 0.4, w = 0.7, x_n = 15.0;
+  box.position_m = Vec2(0.0, x_n + w / 2);  // starboard of a north-going sonar
+  box.heading_deg = 0.0;
+  desc.targets = {box};
+  const scene::Scene sc(desc);
+  const SonarSetup setup = make_sonar_setup(test_sonar(), desc.water);
+  const PingRenderer renderer(sc, setup);
+  const Pose pose = level_pose(a);
+  const auto view = sc.view(renderer.swath_region(pose), 2);
+  PingScratch scratch;
+  PingLines lines;
+  RenderOptions opt;
+  opt.truth = true;
+  renderer.render(*view, pose, 1, 0, opt, scratch, lines);
+  const double x_f = x_n + w;
+  const double r_h = std::hypot(a - h, x_n);
+  const double r_t = std::hypot(a - h, x_f);
+  const double r_s = std::hypot(a, x_f * a / (a - h));
+  const double dr = 0.05;
+  // the rendered line: the shadow is the run of empty bins after the highlight
+  const auto& s = lines.stbd;
+  REQUIRE(scratch.traces.size() == 1);
+  const TargetTrace& tr = scratch.traces[0];
+  CHECK(tr.side == 1);
+  CHECK(std::abs(tr.highlight_first - r_h / dr) <= 1.0);
+  int empty_first = -1, empty_last = -1;
+  for (int k = tr.highlight_first; k < setup.bins; ++k) {
+    if (s[static_cast<std::size_t>(k)] == 0.0f) {
+      if (empty_first < 0) empty_first = k;
+      empty_last = k;
+    } else if (empty_first >= 0) {
+      break;
+    }
+  }
+  INFO("highlight " << tr.highlight_first << ".." << tr.highlight_last << " shadow " << empty_first
+                    << ".." << empty_last << " analytic r_h " << r_h / dr << " r_t " << r_t / dr
+                    << " r_s " << r_s / dr);
+  CHECK(std::abs(empty_first - r_t / dr) <= 2.0);
+  CHECK(std::abs(empty_last + 1 - r_s / dr) <= 2.0);
+  // the truth trace agrees with the analytic shadow on the seabed
+  CHECK(std::abs(tr.shadow_last + 1 - r_s / dr) <= 2.0);
+  // the port side sees no target
+  for (float v : lines.port)
+    REQUIRE(std::isfinite(v));
+}
+
+TEST_CASE("render: rougher sediments return more, in the order of the APL table") {
+  const char* order[] = {"rough_rock", "sandy_gravel", "very_coarse_sand", "very_fine_sand"};
+  double prev = 1e300;
+  for (const char* name : order) {
+    const scene::SceneDesc desc = flat_scene(name);
+    const scene::Scene sc(desc);
+    const SonarSetup setup = make_sonar_setup(test_sonar(), desc.water);
+    const PingRenderer renderer(sc, setup);
+    const Pose pose = level_pose(8.0);
+    const auto view = sc.view(renderer.swath_region(pose), 2);
+    PingScratch scratch;
+    PingLines lines;
+    renderer.render(*view, pose, 1, 0, RenderOptions{}, scratch, lines);
+    double sum = 0.0;
+    for (int k = 200; k < 700; ++k)
+      sum += lines.stbd[static_cast<std::size_t>(k)];
+    INFO(name << " mean " << db(sum / 500));
+    CHECK(sum < prev);
+    prev = sum;
+  }
+}
+
+TEST_CASE("render: speckle on a flat homogeneous patch is exponential") {
+  const scene::SceneDesc desc = flat_scene("very_coarse_sand");
+  const scene::Scene sc(desc);
+  SonarDesc sd = test_sonar();
+  sd.speckle = true;
+  const SonarSetup setup = make_sonar_setup(sd, desc.water);
+  const PingRenderer renderer(sc, setup);
+  const Pose pose = level_pose(8.0);
+  const auto view = sc.view(renderer.swath_region(pose), 2);
+  PingScratch scratch;
+  PingLines mean_line, line;
+  RenderOptions no_speckle;
+  no_speckle.speckle = false;
+  renderer.render(*view, pose, 1, 0, no_speckle, scratch, mean_line);
+  // intensity / local mean over many pings and bins: exponential with mean 1
+  double s1 = 0, s2 = 0;
+  long n = 0, above = 0;
+  for (std::uint64_t ping = 0; ping < 200; ++ping) {
+    renderer.render(*view, pose, 1, ping, RenderOptions{}, scratch, line);
+    for (int k = 250; k < 750; ++k) {
+      const double x =
+          line.stbd[static_cast<std::size_t>(k)] / mean_line.stbd[static_cast<std::size_t>(k)];
+      s1 += x;
+      s2 += x * x;
+      above += x > 2.0;
+      ++n;
+    }
+  }
+  const double mean = s1 / n;
+  const double contrast = std::sqrt(s2 / n - mean * mean) / mean;
+  // 10^5 samples: the sample mean, contrast and exceedance have standard errors well below these
+  CHECK(mean == Approx(1.0).margin(0.01));
+  CHECK(contrast == Approx(1.0).margin(0.02));
+  CHECK(double(above) / n == Approx(0.1353).margin(0.005));
+}
+
+TEST_CASE("render: the same seed renders byte-identical pings, another seed differs") {
+  scene::SceneDesc desc = flat_scene("very_coarse_sand");
+  desc.seabed.elevation.rms_m = 0.2;
+  const scene::Scene sc(desc);
+  SonarDesc sd = test_sonar();
+  sd.speckle = true;
+  sd.noise = true;
+  const SonarSetup setup = make_sonar_setup(sd, desc.water);
+  const PingRenderer renderer(sc, setup);
+  const Pose pose = level_pose(8.0, 30.0);
+  const auto view = sc.view(renderer.swath_region(pose), 2);
+  PingScratch s1, s2;
+  PingLines a, b, c;
+  renderer.render(*view, pose, 7, 42, RenderOptions{}, s1, a);
+  renderer.render(*view, pose, 7, 42, RenderOptions{}, s2, b);
+  renderer.render(*view, pose, 8, 42, RenderOptions{}, s2, c);
+  CHECK(a.port == b.port);
+  CHECK(a.stbd == b.stbd);
+  CHECK(a.stbd != c.stbd);
+}

@@ -1,0 +1,59 @@
+// End-to-end: the `sonarloop render` command as a user runs it.
+#include <catch2/catch.hpp>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "drivers/xtf/xtf_file.h"
+#include "tests/support/temp_dir.h"
+
+namespace {
+
+const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+int run(const std::string& args) {
+  return sonarloop::testing::run_command(kBinary + " " + args + " > /dev/null 2>&1");
+}
+
+}  // namespace
+
+TEST_CASE(
+    "render cli: the same scenario and seed give byte-identical pings.xtf on 1 or 2 threads") {
+  sonarloop::testing::TempDir dir("render-cli");
+  const std::string common = " --resolution-cm 10 --track -32,5:-28,5 --altitude 6";
+  REQUIRE(run("render --out " + dir.file("a") + common + " --threads 1") == 0);
+  REQUIRE(run("render --out " + dir.file("b") + common + " --threads 2") == 0);
+  const std::string a = slurp(dir.file("a/pings.xtf"));
+  const std::string b = slurp(dir.file("b/pings.xtf"));
+  REQUIRE(!a.empty());
+  CHECK(a == b);
+  CHECK(slurp(dir.file("a/waterfall.png")) == slurp(dir.file("b/waterfall.png")));
+  // the recording is a valid XTF file: one ping per 10 cm of the 4 m line, 2 channels
+  const auto file = sonarloop::xtf::read_all_pings(dir.file("a/pings.xtf"));
+  CHECK(file.pings.size() == 41);
+  CHECK(file.header.chan_info.size() >= 2);
+  for (std::size_t k = 0; k < file.pings.size(); ++k) {
+    REQUIRE(file.pings[k].channels.size() == 2);
+    CHECK(file.pings[k].header.ping_number == k);
+  }
+  // the manta at (-30, 10) lies 5 m to starboard of the line: truth.json says so
+  const std::string py = std::string(SONARLOOP_PYTHON) +
+                         " -c \"import json,sys; t=json.load(open(sys.argv[1])); "
+                         "m=[x for x in t['targets'] if x['type']=='manta'][0]; "
+                         "sys.exit(0 if m['seen'] and m['side']=='starboard' else 1)\" " +
+                         dir.file("a/truth.json");
+  CHECK(sonarloop::testing::run_command(py) == 0);
+}
+
+TEST_CASE("render cli: bad options are usage errors") {
+  sonarloop::testing::TempDir dir("render-cli-bad");
+  CHECK(run("render --out " + dir.file("x") + " --resolution-cm 0") == 2);
+  CHECK(run("render --out " + dir.file("x") + " --track 1,2:1,2") == 2);
+  CHECK(run("render") == 2);
+  CHECK(run("render " + dir.file("missing.yaml") + " --out " + dir.file("x")) == 1);
+}

@@ -1,0 +1,260 @@
+// sonarloop run: the real-time emulator (emulator/emulator.h) — pings as XTF over UDP, navigation
+// as NMEA 2000 on CAN, recordings, live statistics.
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "emulator/emulator.h"
+#include "emulator/pacer.h"
+#include "emulator/run_stats.h"
+#include "tools/args.h"
+#include "tools/commands.h"
+#include "tools/scenario_source.h"
+
+namespace sonarloop::tools {
+namespace {
+
+std::atomic<int> g_stop_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free, "set from a signal handler");
+
+extern "C" void on_run_stop_signal(int sig) {
+  g_stop_signal.store(sig, std::memory_order_relaxed);
+}
+
+// SIGINT/SIGTERM set a flag that the publisher polls; the handler is reset after the first
+// signal (SA_RESETHAND), so a second Ctrl-C ends the process at once.
+void install_stop_handler() {
+  struct sigaction sa {};
+  sa.sa_handler = on_run_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESETHAND;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+double ms(double ns) {
+  return ns * 1e-6;
+}
+
+void print_final(const emulator::RunStats& s, const char* how) {
+  std::fprintf(stderr, "sonarloop run: %s after %.2f s of simulation in %.2f s (rate %s)\n", how,
+               s.sim_time_s, s.wall_time_s, s.rate.c_str());
+  std::fprintf(stderr,
+               "  pings: %llu sent, %llu deadline misses (%llu late > %.0f ms, %llu dropped)",
+               static_cast<unsigned long long>(s.pings_sent),
+               static_cast<unsigned long long>(s.deadline_misses()),
+               static_cast<unsigned long long>(s.pings_late),
+               ms(static_cast<double>(emulator::kDeadlineToleranceNs)),
+               static_cast<unsigned long long>(s.pings_dropped));
+  if (s.pings_stale || s.stale_episodes) {
+    std::fprintf(stderr, ", %llu not emitted (stale pose, %llu episodes)",
+                 static_cast<unsigned long long>(s.pings_stale),
+                 static_cast<unsigned long long>(s.stale_episodes));
+  }
+  std::fprintf(stderr, "\n");
+  if (s.ping_lateness.count()) {
+    std::fprintf(stderr,
+                 "  lateness (send deadline -> datagram sent): p50 %.3f ms, p99 %.3f ms, max %.3f "
+                 "ms\n",
+                 ms(s.ping_lateness.quantile_ns(0.5)), ms(s.ping_lateness.quantile_ns(0.99)),
+                 ms(static_cast<double>(s.ping_lateness.max_ns())));
+    std::fprintf(stderr,
+                 "  latency (ping time -> datagram sent, incl. the %.1f ms receive window): p50 "
+                 "%.3f ms, p99 %.3f ms, max %.3f ms\n",
+                 s.send_delay_s * 1e3, ms(s.ping_latency.quantile_ns(0.5)),
+                 ms(s.ping_latency.quantile_ns(0.99)),
+                 ms(static_cast<double>(s.ping_latency.max_ns())));
+  }
+  if (s.wall_time_s > 0) {
+    std::fprintf(stderr, "  throughput: %.1f pings/s (%.2fx real time)\n",
+                 static_cast<double>(s.pings_sent) / s.wall_time_s, s.sim_time_s / s.wall_time_s);
+  }
+  std::fprintf(stderr, "  nav: %llu frames in %llu samples, %llu skipped, %llu withheld",
+               static_cast<unsigned long long>(s.nav_frames),
+               static_cast<unsigned long long>(s.nav_samples),
+               static_cast<unsigned long long>(s.nav_frames_skipped),
+               static_cast<unsigned long long>(s.nav_frames_withheld));
+  if (s.nav_lateness.count()) {
+    std::fprintf(stderr, "; lateness p50 %.3f ms, p99 %.3f ms, max %.3f ms",
+                 ms(s.nav_lateness.quantile_ns(0.5)), ms(s.nav_lateness.quantile_ns(0.99)),
+                 ms(static_cast<double>(s.nav_lateness.max_ns())));
+  }
+  std::fprintf(stderr, "\n");
+  if (s.udp_datagrams) {
+    std::fprintf(stderr,
+                 "  udp: %llu datagrams (%llu file headers), %llu refused or dropped by the "
+                 "kernel (e.g. nothing listening on the port)\n",
+                 static_cast<unsigned long long>(s.udp_datagrams),
+                 static_cast<unsigned long long>(s.udp_header_datagrams),
+                 static_cast<unsigned long long>(s.udp_dropped));
+  }
+  std::fprintf(stderr,
+               "  render: %llu pings, %.2f ms mean, %.2f ms max on %d threads; views: %llu built "
+               "(max %.2f s), %llu render waits (%.2f s)\n",
+               static_cast<unsigned long long>(s.pings_rendered), s.render_mean_ms, s.render_max_ms,
+               s.threads, static_cast<unsigned long long>(s.view_builds), s.view_build_max_s,
+               static_cast<unsigned long long>(s.view_waits), s.view_wait_total_s);
+  std::fprintf(stderr, "  cpu: %.1f %% of one core (%.2f s); start-up %.2f s\n", s.cpu_percent(),
+               s.cpu_time_s, s.startup_s);
+}
+
+int run_run(const std::vector<std::string>& argv) {
+  const Args args(argv, {{"--duration"},
+                         {"--udp"},
+                         {"--can", true, true},
+                         {"--record"},
+                         {"--rate"},
+                         {"--threads"},
+                         {"--quiet", false},
+                         {"--stats-json"},
+                         {"--stats-every"},
+                         {"--pose-from"},
+                         {"--stale-after"},
+                         {"--epoch"}});
+  if (args.positionals().size() > 1) throw UsageError("expected at most one SCENARIO.yaml");
+  const bool quiet = args.has("--quiet");
+
+  emulator::EmulatorOptions o;
+  o.duration_s = args.get_double("--duration", 1e-3, 1e9);
+  if (const auto udp = args.get("--udp")) {
+    try {
+      o.udp = net::parse_host_port(*udp);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--udp: ") + e.what());
+    }
+    if (o.udp->port == 0) throw UsageError("--udp " + *udp + ": the port must not be 0");
+  }
+  o.can_specs = args.get_all("--can");
+  o.record_dir = args.get("--record");
+  try {
+    o.rate = emulator::parse_rate(args.get_or("--rate", "realtime"));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  o.threads = static_cast<int>(args.get_int("--threads", 1, 256)
+                                   .value_or(std::max(1u, std::thread::hardware_concurrency())));
+  o.pose_from = args.get("--pose-from");
+  o.stale_after_s = args.get_double("--stale-after", 1e-3, 3600.0).value_or(2.0);
+  if (args.has("--stale-after") && !o.pose_from) {
+    throw UsageError("--stale-after applies to --pose-from only");
+  }
+  if (o.pose_from && o.rate.max) {
+    throw UsageError("--pose-from needs --rate realtime or a factor, not max");
+  }
+  if (const auto e = args.get_double("--epoch", 0.0, 253402300799.0)) {
+    o.epoch_utc_ns = static_cast<std::int64_t>(std::llround(*e * 1e9));
+  }
+  o.stats_interval_s = quiet ? 0.0 : args.get_double("--stats-every", 0.0, 3600.0).value_or(5.0);
+  const auto stats_json = args.get("--stats-json");
+
+  config::Scenario scenario = load_scenario_or_default(
+      args.positionals().empty() ? std::nullopt : std::optional(args.positionals()[0]));
+
+  emulator::MonotonicClock clock;
+  emulator::EmulatorHooks hooks;
+  hooks.message = [quiet](std::string_view text) {
+    const bool warning = text.rfind("warning", 0) == 0;
+    if (quiet && !warning) return;
+    std::fprintf(stderr, "%.*s\n", static_cast<int>(text.size()), text.data());
+  };
+  hooks.on_stats = [](const emulator::RunStats& s) {
+    char line[512];
+    emulator::format_stats_line(s, line, sizeof line);
+    std::fprintf(stderr, "%s\n", line);
+  };
+  hooks.stop_requested = [] { return g_stop_signal.load(std::memory_order_relaxed) != 0; };
+
+  if (!quiet) {
+    std::fprintf(stderr, "sonarloop run: scenario '%s' (seed %llu), preparing the scene ...\n",
+                 scenario.scene.name.c_str(), static_cast<unsigned long long>(scenario.scene.seed));
+  }
+  emulator::Emulator emu(scenario, o, clock, hooks);
+  if (!quiet) {
+    const auto& s = emu.sonar();
+    std::fprintf(stderr,
+                 "sonar '%s': %d samples per side x %.3g m (%.4g m range), ping every %.2f ms "
+                 "(%.2f pings/s), %zu-byte XTF pings sent %.1f ms after the ping time\n",
+                 s.desc.name.c_str(), s.bins, s.desc.bin_size_m, s.desc.max_range_m,
+                 static_cast<double>(emu.ping_period_ns()) * 1e-6,
+                 1e9 / static_cast<double>(emu.ping_period_ns()), emu.packet_bytes(),
+                 static_cast<double>(emu.send_delay_ns()) * 1e-6);
+    if (emu.end_time() == std::numeric_limits<SimTime>::max()) {
+      std::fprintf(stderr, "duration: until stopped (Ctrl-C)\n");
+    } else {
+      std::fprintf(stderr, "duration: %.2f s of simulation at rate %s\n",
+                   static_cast<double>(emu.end_time()) * 1e-9, emulator::to_string(o.rate).c_str());
+    }
+    for (const auto& line : emu.describe_outputs())
+      std::fprintf(stderr, "%s\n", line.c_str());
+    if (!o.udp) {
+      std::fprintf(stderr,
+                   "hint: no --udp given, pings are not streamed (e.g. --udp 127.0.0.1:5600)\n");
+    }
+  }
+  install_stop_handler();
+  const emulator::RunStats stats = emu.run();
+  const int sig = g_stop_signal.load();
+  print_final(stats, sig == SIGINT    ? "stopped by SIGINT"
+                     : sig == SIGTERM ? "stopped by SIGTERM"
+                                      : "done");
+  if (stats_json) {
+    std::ofstream out(*stats_json);
+    out << emulator::stats_json(stats) << '\n';
+    if (!out) throw std::runtime_error("--stats-json " + *stats_json + ": cannot write");
+  }
+  return 0;
+}
+
+}  // namespace
+
+const Command kRunCommand{
+    "run", "the real-time emulator: pings as XTF over UDP, navigation as NMEA 2000 on CAN",
+    R"(usage: sonarloop run [SCENARIO.yaml] [options]
+
+Flies the scenario's vehicle along its trajectory in real time, renders each ping at the
+sonar's ping period and streams it as one XTF packet per UDP datagram (the 1024-byte XTF file
+header first and every 2 s of simulation), and publishes the navigation as NMEA 2000 frames
+(PGNs 129025 129026 127250 127251 127257 128259 128267 126992 at their standard rates) on CAN.
+Ping k is rendered from the pose at k x ping period and sent one receive window (2 x range /
+sound speed) later, as a real sidescan would. Live statistics every 5 s and at exit on stderr.
+Without SCENARIO.yaml the embedded default scenario is used (see config/default.yaml).
+
+options:
+  --duration S           simulated seconds to run (default: the trajectory's duration;
+                         with --pose-from: until stopped)
+  --udp HOST:PORT        stream the pings there (default: no stream)
+  --can SPEC             publish navigation on SPEC; repeat for several: vcan0 (SocketCAN),
+                         socketcand:HOST:PORT (a socketcand server for python-can & co),
+                         log:FILE (candump log), none
+  --record DIR           write DIR/pings.xtf, DIR/nav.log (candump) and DIR/truth.csv
+  --rate R               realtime (default), max (as fast as possible, nothing dropped,
+                         reproducible), or a factor X of real time (0.01..1000)
+  --threads N            render threads (default: all cores)
+  --quiet                no start-up lines or live statistics (warnings and the final
+                         summary are still printed)
+  --stats-every S        live statistics interval in wall seconds (default 5; 0 = none)
+  --stats-json FILE      write the final statistics as JSON
+  --pose-from SPEC       follow an external vehicle: can:IFACE, socketcand:HOST:PORT[:CHANNEL]
+                         or udp:HOST:PORT (emulator/pose_message.md); pings pause while the
+                         pose is stale
+  --stale-after S        age beyond which the external pose is stale (default 2 s)
+  --epoch UNIX_S         UTC of the mission start, seconds since 1970 (default: now; with
+                         --rate max 1767225600 = 2026-01-01T00:00:00Z, for reproducible files)
+
+examples:
+  sonarloop run --duration 30 --udp 127.0.0.1:5600
+  sonarloop run --udp 127.0.0.1:5600 --can socketcand:127.0.0.1:29536 --record out/run
+  sonarloop run config/default.yaml --rate max --record out/max --stats-json out/max.json
+  sonarloop run --can vcan0 --can log:nav.log --rate 2
+  sonarloop run --pose-from udp:127.0.0.1:5700 --udp 127.0.0.1:5600 --stale-after 1
+)",
+    run_run, 10};
+SONARLOOP_REGISTER_COMMAND(kRunCommand);
+
+}  // namespace sonarloop::tools

@@ -1,0 +1,136 @@
+// sonarloop train: train the PCA (eigen-subspace) classifier on a folder of PNG chips.
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "atr/chip_folder.h"
+#include "atr/model_file.h"
+#include "atr/subspace_classifier.h"
+#include "tools/args.h"
+#include "tools/commands.h"
+#include "tools/progress.h"
+
+namespace sonarloop::tools {
+namespace {
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
+}
+
+int run_train(const std::vector<std::string>& argv) {
+  const Args args(argv, {{"--out"},
+                         {"--p"},
+                         {"--aspect-sectors"},
+                         {"--group-subspaces", false},
+                         {"--mine-classes"},
+                         {"--skip-bad-chips", false}});
+  if (args.positionals().size() != 1) throw UsageError("expected one CHIPS_DIR");
+  const auto out = args.get("--out");
+  if (!out) throw UsageError("--out MODEL is required");
+  atr::TrainOptions opt;
+  opt.p = static_cast<int>(args.get_int("--p", 1, 4096).value_or(atr::kDefaultSubspaceDim));
+  opt.aspect_sectors = static_cast<int>(args.get_int("--aspect-sectors", 1, 360).value_or(1));
+  opt.group_subspaces = args.has("--group-subspaces");
+  opt.skip_degenerate = args.has("--skip-bad-chips");
+  if (const auto m = args.get("--mine-classes")) opt.mine_classes = split_list(*m);
+
+  const auto t0 = std::chrono::steady_clock::now();
+  const atr::ChipFolder folder = atr::read_chip_folder(args.positionals()[0]);
+  if (opt.aspect_sectors > 1 && folder.aspect_count < folder.chips.size()) {
+    throw std::runtime_error(std::to_string(opt.aspect_sectors) +
+                             " aspect sectors need an aspect angle for every "
+                             "chip, but labels.csv in '" +
+                             folder.root + "' gives one for " +
+                             std::to_string(folder.aspect_count) + " of " +
+                             std::to_string(folder.chips.size()) + " chips" +
+                             (folder.has_labels_csv ? "" : " (there is no labels.csv)"));
+  }
+  const double read_s = seconds_since(t0);
+  const auto t1 = std::chrono::steady_clock::now();
+  atr::TrainReport report;
+  const atr::Model model = atr::train_model(folder.chips, opt, &report);
+  const double train_s = seconds_since(t1);
+  atr::save_model(model, *out);
+
+  for (const auto& s : report.skipped) {
+    std::fprintf(stderr, "skipped '%s': %s\n", s.source.c_str(), s.reason.c_str());
+  }
+  std::printf("trained on %zu chips of %d x %d pixels from '%s' (read %.2f s, train %.2f s)\n",
+              folder.chips.size() - report.skipped.size(), model.chip_width, model.chip_height,
+              folder.root.c_str(), read_s, train_s);
+  std::printf("p = %d, %d aspect sector%s%s\n", model.p, model.aspect_sectors,
+              model.aspect_sectors == 1 ? "" : "s",
+              model.groups.empty() ? "" : ", with mine / non_mine group subspaces");
+  auto print_class = [](const atr::ClassModel& c, const char* kind) {
+    int chips = 0;
+    std::string ranks;
+    for (const auto& s : c.subspaces) {
+      chips += s.train_count;
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%s%d", ranks.empty() ? "" : " ", s.rank());
+      ranks += buf;
+    }
+    std::printf("  %-5s %-20s %-9s %5d chips, %zu subspace%s, rank %s\n", kind, c.name.c_str(),
+                c.mine_like ? "mine-like" : "non-mine", chips, c.subspaces.size(),
+                c.subspaces.size() == 1 ? "" : "s", ranks.c_str());
+  };
+  for (const auto& c : model.classes)
+    print_class(c, "class");
+  for (const auto& g : model.groups)
+    print_class(g, "group");
+  if (!report.skipped.empty()) {
+    std::printf("skipped %zu degenerate chips (listed on stderr)\n", report.skipped.size());
+  }
+  std::printf("wrote %s\n", out->c_str());
+  return 0;
+}
+
+}  // namespace
+
+const Command kTrainCommand{
+    "train", "train the PCA (eigen-subspace) classifier on PNG chips, one subfolder per class",
+    R"(usage: sonarloop train CHIPS_DIR --out MODEL [options]
+
+Trains the eigen-subspace classifier of Pailhas, Petillot & Capus (2010), Section 3.2: for each
+class, every chip is normalised by its own mean and standard deviation (eq. 9), the class mean
+image is taken (eq. 8), and the p leading eigenvectors of the centred chips are found from the
+k x k Gram matrix. Classification (sonarloop classify) picks the class whose subspace leaves the
+smallest residual (eq. 10). A class with k <= p chips keeps rank k - 1.
+
+CHIPS_DIR holds one subfolder per class, named after the class, with PNG chips of one size
+inside (any PNG; colour is converted to grey). An optional CHIPS_DIR/labels.csv with columns
+file,class,aspect_deg,... gives each chip's target aspect angle in degrees (file is the path
+relative to CHIPS_DIR, e.g. manta/001.png). Real data works the same way as synthetic data.
+
+Classes named manta, rockan, cylinder or cuboid are mine-like (Section 4.1.2), other names are
+not, unless --mine-classes says otherwise.
+
+options:
+  --out MODEL          model file to write (versioned binary, see atr/model_file.h)
+  --p N                leading eigenvectors per subspace (default 20)
+  --aspect-sectors N   several subspaces per class, one per aspect sector of 360/N degrees,
+                       each trained on the chips of that aspect (default 1; N > 1 needs an
+                       aspect_deg in labels.csv for every chip)
+  --group-subspaces    also train pooled "mine" and "non_mine" subspaces for the mine / non-mine
+                       decision (default: the group of the identified class)
+  --mine-classes A,B   the mine-like classes, comma-separated (replaces the default)
+  --skip-bad-chips     skip degenerate chips (constant, non-finite), listing them, instead of
+                       stopping with an error
+
+examples:
+  sonarloop train out/chips --out out/atr.slpca
+  sonarloop train out/chips --out out/atr8.slpca --aspect-sectors 8 --p 10
+  sonarloop train ~/survey/chips --out survey.slpca --mine-classes mine,torpedo
+)",
+    run_train, 60};
+SONARLOOP_REGISTER_COMMAND(kTrainCommand);
+
+}  // namespace sonarloop::tools

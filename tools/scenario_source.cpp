@@ -1,0 +1,16 @@
+#include "tools/scenario_source.h"
+
+#include "config/default_scenario.h"
+
+namespace sonarloop::tools {
+
+config::Scenario load_scenario_or_default(const std::optional<std::string>& path) {
+  if (path && !path->empty()) return config::load_scenario(*path);
+  return config::parse_scenario(config::default_scenario_yaml(), "default.yaml");
+}
+
+scene::SceneDesc load_scene_or_default(const std::optional<std::string>& path) {
+  return load_scenario_or_default(path).scene;
+}
+
+}  // namespace sonarloop::tools

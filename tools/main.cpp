@@ -23,8 +23,13 @@ void print_overview() {
   }
   std::printf(
       "\nexamples:\n"
+      "  sonarloop run --duration 30 --udp 127.0.0.1:5600          # the main job, live\n"
       "  sonarloop scene config/default.yaml --out out/scene\n"
-      "  sonarloop scene --help\n");
+      "  sonarloop render --out out/render --resolution-cm 5\n"
+      "  sonarloop dataset --out out/chips --count 80\n"
+      "  sonarloop train out/chips --out out/atr.slpca\n"
+      "  sonarloop replay tests/data/xtf/scotsman-iver2.xtf --udp 127.0.0.1:5600\n"
+      "  sonarloop run --help\n");
 }
 
 }  // namespace

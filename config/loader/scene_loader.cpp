@@ -361,19 +361,8 @@ SceneDesc parse_scene_node(const Field& f, bool check_unknown_keys) {
 }
 
 SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_name) {
-  try {
-    return parse_scene_node(parse_document(yaml_text, source_name));
-  } catch (const YAML::Exception& e) {
-    // not expected (the toolkit checks node kinds before using them); kept so that a yaml-cpp
-    // surprise still reaches the user as a configuration error naming the file
-    throw ConfigError(ConfigIssue{source_name,
-                                  "",
-                                  "YAML error: " + e.msg,
-                                  "well-formed YAML",
-                                  {},
-                                  e.mark.is_null() ? 0 : e.mark.line + 1,
-                                  e.mark.is_null() ? 0 : e.mark.column + 1});
-  }
+  return with_yaml_errors(source_name,
+                          [&] { return parse_scene_node(parse_document(yaml_text, source_name)); });
 }
 
 SceneDesc load_scene(const std::string& path) {

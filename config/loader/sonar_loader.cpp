@@ -420,23 +420,6 @@ SonarDesc read_sonar_map(const Field& f, Source source) {
   return d;
 }
 
-// yaml-cpp exceptions are not expected (the toolkit checks node kinds first); kept so that a
-// yaml-cpp surprise still reaches the user as a configuration error naming the source
-template <class Fn>
-auto with_yaml_errors(const std::string& source_name, Fn&& fn) {
-  try {
-    return fn();
-  } catch (const YAML::Exception& e) {
-    throw ConfigError(ConfigIssue{source_name,
-                                  "",
-                                  "YAML error: " + e.msg,
-                                  "well-formed YAML",
-                                  {},
-                                  e.mark.is_null() ? 0 : e.mark.line + 1,
-                                  e.mark.is_null() ? 0 : e.mark.column + 1});
-  }
-}
-
 // one line of format_sonar_yaml
 void put(std::string& out, const std::string& pad, std::string_view key, std::string_view value) {
   out += pad;

@@ -677,19 +677,8 @@ VehicleDesc parse_vehicle_node(const Field& f) {
 }
 
 VehicleDesc parse_vehicle(const std::string& yaml_text, const std::string& source_name) {
-  try {
-    return parse_vehicle_node(parse_document(yaml_text, source_name));
-  } catch (const YAML::Exception& e) {
-    // not expected (the toolkit checks node kinds before using them); kept so that a yaml-cpp
-    // surprise still reaches the user as a configuration error naming the file
-    throw ConfigError(ConfigIssue{source_name,
-                                  "",
-                                  "YAML error: " + e.msg,
-                                  "well-formed YAML",
-                                  {},
-                                  e.mark.is_null() ? 0 : e.mark.line + 1,
-                                  e.mark.is_null() ? 0 : e.mark.column + 1});
-  }
+  return with_yaml_errors(
+      source_name, [&] { return parse_vehicle_node(parse_document(yaml_text, source_name)); });
 }
 
 VehicleDesc load_vehicle(const std::string& path) {

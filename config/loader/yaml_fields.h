@@ -223,6 +223,24 @@ std::string read_text_file(const std::string& path);
 // Syntax errors -> ConfigError with the line and column of the problem.
 Field parse_document(const std::string& yaml_text, const std::string& file);
 
+// Runs fn() (a parse of `source_name`) and turns a yaml-cpp exception into a ConfigError naming
+// the source. yaml-cpp exceptions are not expected (the toolkit checks node kinds first); kept so
+// that a yaml-cpp surprise still reaches the user as a configuration error.
+template <class Fn>
+auto with_yaml_errors(const std::string& source_name, Fn&& fn) {
+  try {
+    return fn();
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(ConfigIssue{source_name,
+                                  "",
+                                  "YAML error: " + e.msg,
+                                  "well-formed YAML",
+                                  {},
+                                  e.mark.is_null() ? 0 : e.mark.line + 1,
+                                  e.mark.is_null() ? 0 : e.mark.column + 1});
+  }
+}
+
 // Shortest text that reads back as the same double ("0.025", "1e+12").
 std::string format_number(double v);
 

@@ -13,45 +13,9 @@
 #include "emulator/ping_producer.h"
 #include "emulator/xtf_ping.h"
 #include "tests/emulator/test_scenario.h"
+#include "tests/support/allocation_counter.h"
 
-namespace {
-thread_local bool g_counting = false;
-thread_local long g_allocations = 0;
-}  // namespace
-
-void* operator new(std::size_t size) {
-  if (g_counting) ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) {
-  return operator new(size);
-}
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  if (g_counting) ++g_allocations;
-  return std::malloc(size == 0 ? 1 : size);
-}
-void* operator new[](std::size_t size, const std::nothrow_t& tag) noexcept {
-  return operator new(size, tag);
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
+using sonarloop::testing::allocations_in;
 
 using namespace sonarloop;
 using namespace sonarloop::emulator;
@@ -103,12 +67,10 @@ TEST_CASE("ping producer: no allocation per ping once warmed up") {
   PingSlot slot = rig.slot();
   for (std::int64_t k = 0; k < 5; ++k)
     p.produce(k, 0, slot);
-  g_allocations = 0;
-  g_counting = true;
-  for (std::int64_t k = 5; k < 45; ++k)
-    p.produce(k, 0, slot);
-  g_counting = false;
-  CHECK(g_allocations == 0);
+  CHECK(allocations_in([&] {
+          for (std::int64_t k = 5; k < 45; ++k)
+            p.produce(k, 0, slot);
+        }) == 0);
   CHECK(slot.packet_size > 0);
   CHECK(slot.emitted);
 }

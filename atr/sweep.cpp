@@ -1,0 +1,359 @@
+#include "atr/sweep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace sonarloop::atr {
+namespace {
+
+using targets::TargetType;
+
+// The four targets of Figs. 11 and 15 (Section 3.1), in the paper's order.
+const std::vector<TargetType>& four_targets() {
+  static const std::vector<TargetType> kTargets{TargetType::kManta, TargetType::kRockan,
+                                                TargetType::kCuboid, TargetType::kCylinder};
+  return kTargets;
+}
+
+// Fig. 11 / 13: 15 resolutions from 3 to 30 cm.
+const std::vector<double>& highlight_resolutions_cm() {
+  static const std::vector<double> kCm{3, 4, 5, 6, 7, 8, 9, 10, 12, 14, 16, 18, 20, 25, 30};
+  return kCm;
+}
+
+// Fig. 15: shadows from 5 to 30 cm (shadow chips are 3 x 10 m: 100 x 333 pixels at 3 cm).
+const std::vector<double>& shadow_resolutions_cm() {
+  static const std::vector<double> kCm{5, 7.5, 10, 12.5, 15, 17.5, 20, 25, 30};
+  return kCm;
+}
+
+// The stability studies run at the paper's best highlight resolution unless told otherwise.
+constexpr double kStabilityResolutionCm = 5.0;
+
+std::string cm_label(double cm) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g cm", cm);
+  return buf;
+}
+
+SweepCondition base_condition(const SweepSettings& s, double resolution_cm) {
+  SweepCondition c;
+  c.x_name = "resolution_cm";
+  c.x = resolution_cm;
+  c.resolution_m = resolution_cm / 100.0;
+  c.train_count = s.train_count;
+  c.p = s.p;
+  return c;
+}
+
+// One condition per resolution (Figs. 11, 13, 15).
+std::vector<SweepCondition> resolution_curve(const SweepSettings& s,
+                                             const std::vector<double>& default_cm) {
+  std::vector<SweepCondition> out;
+  for (double cm : s.resolutions_cm.empty() ? default_cm : s.resolutions_cm)
+    out.push_back(base_condition(s, cm));
+  return out;
+}
+
+// A stability study: for each resolution (default 5 cm; the series), one condition per value.
+template <class Apply>
+std::vector<SweepCondition> stability_curve(const SweepSettings& s, const std::string& x_name,
+                                            const std::vector<double>& values, Apply apply) {
+  std::vector<SweepCondition> out;
+  const std::vector<double> res =
+      s.resolutions_cm.empty() ? std::vector<double>{kStabilityResolutionCm} : s.resolutions_cm;
+  for (double cm : res) {
+    for (double v : values) {
+      SweepCondition c = base_condition(s, cm);
+      c.series = cm_label(cm);
+      c.x_name = x_name;
+      c.x = v;
+      if (apply(c, v)) out.push_back(c);
+    }
+  }
+  return out;
+}
+
+std::string format_number(double v) {
+  if (!std::isfinite(v)) return "";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string format_pct(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4f", 100.0 * v);
+  return buf;
+}
+
+}  // namespace
+
+ErrorRate error_rate(std::size_t errors, std::size_t n, double z) {
+  ErrorRate r;
+  r.n = n;
+  r.errors = errors;
+  r.rate = n ? static_cast<double>(errors) / static_cast<double>(n) : 0.0;
+  r.ci = wilson_interval(errors, n, z);
+  return r;
+}
+
+LabelledChip labelled_chip(const render::ChipImage& c) {
+  LabelledChip lc;
+  lc.chip.width = c.cols;
+  lc.chip.height = c.rows;
+  lc.chip.pixels.assign(c.pixels.begin(), c.pixels.end());
+  lc.label = std::string(targets::target_type_info(c.params.type).key);
+  lc.aspect_deg = c.params.aspect_deg;
+  lc.source = "chip " + std::to_string(c.params.index);
+  return lc;
+}
+
+std::vector<std::string> sweep_experiment_names() {
+  return {"fig11", "fig13", "fig15", "aspect", "snr", "altitude", "train_size", "p"};
+}
+
+SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettings& s) {
+  SweepExperiment e;
+  e.name = name;
+  e.classes = four_targets();
+  e.test_count = s.test_count;
+  if (name == "fig11") {
+    e.title = "Fig. 11: identification from highlights against pixel resolution";
+    e.conditions = resolution_curve(s, highlight_resolutions_cm());
+  } else if (name == "fig13") {
+    e.title = "Fig. 13: mine-like and non-mine targets, identification and mine / non-mine";
+    e.classes.insert(e.classes.end(), s.non_mine.begin(), s.non_mine.end());
+    e.mine_groups = true;
+    e.conditions = resolution_curve(s, highlight_resolutions_cm());
+  } else if (name == "fig15") {
+    e.title = "Fig. 15: identification from shadows against pixel resolution";
+    e.kind = render::ChipKind::kShadow;
+    e.conditions = resolution_curve(s, shadow_resolutions_cm());
+  } else if (name == "aspect") {
+    // the same training chips (twice the usual count, so that an 8-sector subspace still
+    // holds ~20 chips) for one subspace per target and for 4 and 8 aspect sectors
+    e.title = "Error against target aspect: one subspace per target or one per aspect sector";
+    e.aspect_bins = kSweepAspectBins;
+    e.conditions =
+        stability_curve(s, "aspect_sectors", {1, 4, 8}, [&](SweepCondition& c, double v) {
+          c.aspect_sectors = static_cast<int>(v);
+          c.train_count = 2 * s.train_count;
+          c.series = (v == 1 ? std::string("1 subspace") : format_number(v) + " sectors") + " (" +
+                     c.series + ")";
+          return true;
+        });
+  } else if (name == "snr") {
+    // the renderer's full scale follows the source level (quantise.h), the Mellen noise does
+    // not: every dB less is a dB less signal-to-noise ratio in the chip
+    e.title = "Stability: source level (signal-to-noise ratio)";
+    e.conditions = stability_curve(s, "source_level_db", {210, 190, 170, 160, 150, 140, 130},
+                                   [&](SweepCondition& c, double v) {
+                                     c.source_level_offset_db = v - s.sonar.source_level_db;
+                                     return true;
+                                   });
+  } else if (name == "altitude") {
+    e.title = "Stability: sonar altitude (grazing angle)";
+    e.conditions =
+        stability_curve(s, "altitude_m", {2, 3, 5, 7, 10, 15, 20}, [](SweepCondition& c, double v) {
+          c.altitude_min_m = v;
+          c.altitude_max_m = v;
+          return true;
+        });
+  } else if (name == "train_size") {
+    e.title = "Stability: training chips per target";
+    e.conditions = stability_curve(s, "train_per_class", {5, 10, 20, 40, 80, 160, 320},
+                                   [](SweepCondition& c, double v) {
+                                     c.train_count = static_cast<int>(v);
+                                     return true;
+                                   });
+  } else if (name == "p") {
+    e.title = "Stability and speed: subspace dimension p";
+    e.conditions =
+        stability_curve(s, "p", {1, 2, 3, 5, 10, 20, 40, 60, 79}, [&](SweepCondition& c, double v) {
+          c.p = static_cast<int>(v);
+          return c.p < s.train_count;  // rank <= k - 1
+        });
+  } else {
+    std::string all;
+    for (const auto& n : sweep_experiment_names())
+      all += (all.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("unknown experiment '" + name + "' (allowed: " + all + ", all)");
+  }
+  return e;
+}
+
+std::vector<RenderGroup> render_groups(const SweepExperiment& e) {
+  std::vector<RenderGroup> groups;
+  for (std::size_t i = 0; i < e.conditions.size(); ++i) {
+    const SweepCondition& c = e.conditions[i];
+    auto g = std::find_if(groups.begin(), groups.end(), [&](const RenderGroup& x) {
+      return x.altitude_min_m == c.altitude_min_m && x.altitude_max_m == c.altitude_max_m &&
+             x.source_level_offset_db == c.source_level_offset_db;
+    });
+    if (g == groups.end()) {
+      groups.push_back(
+          RenderGroup{c.altitude_min_m, c.altitude_max_m, c.source_level_offset_db, {}, {}, 0});
+      g = groups.end() - 1;
+    }
+    auto r = std::find(g->resolutions_m.begin(), g->resolutions_m.end(), c.resolution_m);
+    if (r == g->resolutions_m.end()) {
+      g->resolutions_m.push_back(c.resolution_m);
+      g->members.emplace_back();
+      r = g->resolutions_m.end() - 1;
+    }
+    g->members[static_cast<std::size_t>(r - g->resolutions_m.begin())].push_back(i);
+    g->train_count = std::max(g->train_count, c.train_count);
+  }
+  return groups;
+}
+
+render::ChipDatasetSpec render_group_spec(const SweepExperiment& e, const RenderGroup& g,
+                                          const SweepSettings& s, bool test) {
+  if (s.seabeds.empty()) throw std::invalid_argument("sweep: no seabed kinds");
+  render::ChipDatasetSpec spec;
+  spec.seed = test ? s.seed + kTestSeedOffset : s.seed;
+  spec.kind = e.kind;
+  spec.classes = e.classes;
+  spec.seabeds = s.seabeds;
+  spec.resolutions_m = g.resolutions_m;
+  spec.altitude_min_m = g.altitude_min_m;
+  spec.altitude_max_m = g.altitude_max_m;
+  spec.sonar = s.sonar;
+  spec.sonar.source_level_db += g.source_level_offset_db;
+  return spec;
+}
+
+std::vector<LabelledChip> training_prefix(const std::vector<LabelledChip>& chips, int count,
+                                          std::size_t classes) {
+  const std::size_t n =
+      std::min(chips.size(), static_cast<std::size_t>(std::max(count, 0)) * classes);
+  return {chips.begin(), chips.begin() + static_cast<std::ptrdiff_t>(n)};
+}
+
+namespace {
+
+std::vector<std::string> class_keys(const std::vector<TargetType>& classes) {
+  std::vector<std::string> out;
+  for (TargetType t : classes)
+    out.emplace_back(targets::target_type_info(t).key);
+  return out;
+}
+
+std::vector<std::string> model_class_names(const Model& m) {
+  std::vector<std::string> out;
+  for (const auto& c : m.classes)
+    out.push_back(c.name);
+  return out;
+}
+
+}  // namespace
+
+ConditionResult::ConditionResult(std::size_t index, const SweepExperiment& e, const Model& m)
+    : condition(index), confusion(class_keys(e.classes), model_class_names(m)) {
+  const auto cells = e.classes.size() * static_cast<std::size_t>(std::max(e.aspect_bins, 0));
+  aspect_n.assign(cells, 0);
+  aspect_errors.assign(cells, 0);
+}
+
+void score_chip(ConditionResult& out, const SweepExperiment& e, const Model& m, std::size_t truth,
+                double aspect_deg, const Classification& r) {
+  const auto predicted = static_cast<std::size_t>(r.class_index);
+  out.confusion.add(truth, predicted);
+  const TargetType t = e.classes.at(truth);
+  const bool wrong = m.classes.at(predicted).name != targets::target_type_info(t).key;
+  if (e.mine_groups) {
+    ++out.mine_n;
+    out.mine_errors += r.mine_like != targets::target_type_info(t).mine_like;
+  }
+  if (e.aspect_bins > 0) {
+    const auto cell = truth * static_cast<std::size_t>(e.aspect_bins) +
+                      static_cast<std::size_t>(aspect_sector(aspect_deg, e.aspect_bins));
+    ++out.aspect_n[cell];
+    out.aspect_errors[cell] += wrong;
+  }
+}
+
+namespace {
+
+// Correct identifications of truth class `t` (the prediction of the same name).
+std::size_t correct_of(const ConfusionMatrix& cm, std::size_t t) {
+  const auto& pred = cm.predicted_classes();
+  const auto it = std::find(pred.begin(), pred.end(), cm.truth_classes()[t]);
+  return it == pred.end() ? 0 : cm.count(t, static_cast<std::size_t>(it - pred.begin()));
+}
+
+std::string csv_row(const SweepExperiment& e, const SweepCondition& c, const ConditionResult& r,
+                    const std::string& x_name, double x, const std::string& cls,
+                    const ErrorRate& er) {
+  std::string s = e.name + "," + c.series + "," + x_name + "," + format_number(x) + "," +
+                  format_number(c.resolution_m * 100.0) + "," + cls + "," + std::to_string(er.n) +
+                  "," + std::to_string(er.errors) + "," + format_pct(er.rate) + "," +
+                  format_pct(er.ci.lo) + "," + format_pct(er.ci.hi) + "," +
+                  std::to_string(c.train_count) + "," + std::to_string(c.p) + "," +
+                  std::to_string(c.aspect_sectors) + "," +
+                  format_number(1e3 * r.render_s_per_chip) + "," + format_number(r.train_s) + "," +
+                  format_number(1e3 * r.classify_s_per_chip) + "," + (r.complete ? "1" : "0");
+  return s + "\n";
+}
+
+}  // namespace
+
+std::string results_csv(const SweepExperiment& e, const std::vector<ConditionResult>& results) {
+  std::string out =
+      "experiment,series,x_name,x,resolution_cm,class,n,errors,error_pct,ci_low_pct,ci_high_pct,"
+      "train_per_class,p,aspect_sectors,render_ms_per_chip,train_s,classify_ms_per_chip,"
+      "complete\n";
+  for (const ConditionResult& r : results) {
+    const SweepCondition& c = e.conditions.at(r.condition);
+    const ConfusionMatrix& cm = r.confusion;
+    for (std::size_t t = 0; t < e.classes.size(); ++t) {
+      const std::size_t n = cm.row_total(t);
+      out += csv_row(e, c, r, c.x_name, c.x, cm.truth_classes()[t],
+                     error_rate(n - correct_of(cm, t), n));
+    }
+    out +=
+        csv_row(e, c, r, c.x_name, c.x, "all", error_rate(cm.total() - cm.correct(), cm.total()));
+    if (e.mine_groups) {
+      out +=
+          csv_row(e, c, r, c.x_name, c.x, "mine_vs_non_mine", error_rate(r.mine_errors, r.mine_n));
+    }
+    if (e.aspect_bins > 0) {
+      const auto bins = static_cast<std::size_t>(e.aspect_bins);
+      const double width = 360.0 / e.aspect_bins;
+      for (std::size_t b = 0; b < bins; ++b) {
+        std::size_t n_all = 0, err_all = 0;
+        for (std::size_t t = 0; t < e.classes.size(); ++t) {
+          const std::size_t k = t * bins + b;
+          n_all += r.aspect_n[k];
+          err_all += r.aspect_errors[k];
+          out += csv_row(e, c, r, "aspect_deg", (static_cast<double>(b) + 0.5) * width,
+                         cm.truth_classes()[t], error_rate(r.aspect_errors[k], r.aspect_n[k]));
+        }
+        out += csv_row(e, c, r, "aspect_deg", (static_cast<double>(b) + 0.5) * width, "all",
+                       error_rate(err_all, n_all));
+      }
+    }
+  }
+  return out;
+}
+
+std::string confusion_csv(const SweepExperiment& e, const std::vector<ConditionResult>& results) {
+  std::string out = "experiment,series,x_name,x,truth,predicted,count\n";
+  for (const ConditionResult& r : results) {
+    const SweepCondition& c = e.conditions.at(r.condition);
+    const ConfusionMatrix& cm = r.confusion;
+    for (std::size_t t = 0; t < cm.truth_classes().size(); ++t) {
+      for (std::size_t p = 0; p < cm.predicted_classes().size(); ++p) {
+        out += e.name + "," + c.series + "," + c.x_name + "," + format_number(c.x) + "," +
+               cm.truth_classes()[t] + "," + cm.predicted_classes()[p] + "," +
+               std::to_string(cm.count(t, p)) + "\n";
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace sonarloop::atr

@@ -1,0 +1,155 @@
+#pragma once
+// The resolution study of Pailhas, Petillot & Capus, "High-Resolution Sonars: What Resolution Do
+// We Need for Target Recognition?", EURASIP J. Adv. Signal Process. 2010, Sections 3-4, as
+// experiments run in memory: chips from sim/render/chip_renderer.h, the eigen-subspace
+// classifier of atr/subspace_classifier.h, scored with atr/confusion.h.
+//
+// An experiment is a list of conditions (points on a curve): what to render (pixel size R,
+// altitude range, source level) and how to train (chips per class, p, aspect sectors). Training
+// chips come from the dataset of seed S, test chips from the dataset of seed S + 1 (other
+// targets, seabeds, geometries, speckle), so a model never sees its test chips. Chip i of a
+// dataset is the same target at every resolution (chip_renderer.h), so curves against R
+// compare like with like. Conditions with the same rendering share their chips: the training
+// set of a smaller train count is a prefix of the larger one (chips alternate over the classes,
+// so every prefix of k x classes chips holds k per class).
+//
+// The experiments (names for --experiment):
+//   fig11       Fig. 11: Manta, Rockan, cuboid, cylinder from highlights, 15 resolutions
+//               3-30 cm; misidentification per target against R.
+//   fig13       Fig. 13: the four mine-like targets and three non-mine shapes; identification,
+//               then the mine / non-mine decision error (Section 4.1.2) against R.
+//   fig15       Fig. 15: the four targets from their shadows (ChipKind::kShadow), 5-30 cm.
+//   aspect      error against the target's aspect, one subspace per target against several
+//               subspaces per target, each for an aspect sector (the paper's remedy).
+//   snr         stability: source level lowered step by step (the thermal noise stays, so the
+//               signal-to-noise ratio falls by the same number of dB), at 5 cm.
+//   altitude    stability: fixed sonar altitudes 2-20 m (grazing angle), at 5 cm.
+//   train_size  stability: training chips per class 5-320, at 5 cm.
+//   p           stability and speed: subspace dimension p 1-80, at 5 cm.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "atr/chip.h"
+#include "atr/confusion.h"
+#include "atr/subspace_classifier.h"
+#include "sim/render/chip_renderer.h"
+
+namespace sonarloop::atr {
+
+// Seed offset of the test dataset against the training dataset.
+inline constexpr std::uint64_t kTestSeedOffset = 1;
+// Aspect bins of the aspect experiment (30 deg each).
+inline constexpr int kSweepAspectBins = 12;
+
+// An error count with its rate and 95 % Wilson interval (confusion.h).
+struct ErrorRate {
+  std::size_t n = 0;
+  std::size_t errors = 0;
+  double rate = 0.0;  // errors / n (0 when n = 0)
+  Interval ci;        // of the error rate
+};
+ErrorRate error_rate(std::size_t errors, std::size_t n, double z = kZ95);
+
+// A rendered chip as a classifier chip: pixels 0..255 as float, label = target key, aspect.
+LabelledChip labelled_chip(const render::ChipImage& c);
+
+// What the command line sets.
+struct SweepSettings {
+  std::uint64_t seed = 0;
+  int train_count = 80;  // per class and condition (the paper: 80)
+  int test_count = 100;  // per class and condition (the paper: 10,000)
+  int p = kDefaultSubspaceDim;
+  std::vector<double> resolutions_cm;  // empty: each experiment's own list
+  // fig13's non-mine shapes (sim/targets/target_type.h)
+  std::vector<targets::TargetType> non_mine = {targets::TargetType::kLargeCuboid,
+                                               targets::TargetType::kHemisphere,
+                                               targets::TargetType::kBox};
+  std::vector<render::DatasetSeabed> seabeds;  // must not be empty
+  render::SonarDesc sonar;
+};
+
+// One point of an experiment.
+struct SweepCondition {
+  std::string series;  // curve label, e.g. "8 sectors"; "" for the single curve
+  std::string x_name;  // "resolution_cm", "p", "train_per_class", "source_level_db", ...
+  double x = 0.0;
+  // rendering: conditions with equal values share chips
+  double resolution_m = 0.05;
+  double altitude_min_m = 2.0;
+  double altitude_max_m = 10.0;
+  double source_level_offset_db = 0.0;
+  // training
+  int train_count = 80;  // per class
+  int p = kDefaultSubspaceDim;
+  int aspect_sectors = 1;
+};
+
+struct SweepExperiment {
+  std::string name;
+  std::string title;
+  render::ChipKind kind = render::ChipKind::kHighlight;
+  std::vector<targets::TargetType> classes;
+  bool mine_groups = false;  // also score the mine / non-mine decision
+  int aspect_bins = 0;       // > 0: also score per aspect bin
+  int test_count = 100;      // per class
+  std::vector<SweepCondition> conditions;
+};
+
+std::vector<std::string> sweep_experiment_names();
+// Throws std::invalid_argument naming the allowed experiments for an unknown name.
+SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettings& settings);
+
+// Conditions that share rendered chips: same altitude range and source level (one renderer,
+// all their resolutions), then the same resolution.
+struct RenderGroup {
+  double altitude_min_m = 0.0;
+  double altitude_max_m = 0.0;
+  double source_level_offset_db = 0.0;
+  std::vector<double> resolutions_m;              // distinct, in order of first use
+  std::vector<std::vector<std::size_t>> members;  // (resolutions) condition indices
+  int train_count = 0;                            // the largest of its conditions, per class
+};
+std::vector<RenderGroup> render_groups(const SweepExperiment& e);
+
+// The dataset of a render group: training (test = false, seed S) or test (seed S + 1).
+render::ChipDatasetSpec render_group_spec(const SweepExperiment& e, const RenderGroup& g,
+                                          const SweepSettings& settings, bool test);
+
+// A training set: the first count x classes chips of `chips` (count per class).
+std::vector<LabelledChip> training_prefix(const std::vector<LabelledChip>& chips, int count,
+                                          std::size_t classes);
+
+// The scores of one condition.
+struct ConditionResult {
+  std::size_t condition = 0;
+  ConfusionMatrix confusion;
+  std::size_t mine_n = 0, mine_errors = 0;
+  std::vector<std::size_t> aspect_n, aspect_errors;  // (classes x aspect bins), row-major
+  std::size_t rejected = 0;                          // degenerate test chips
+  // timings, filled by the caller: thread-seconds to render one chip, seconds to train the
+  // model, seconds to classify one chip (one thread)
+  double render_s_per_chip = 0.0;
+  double train_s = 0.0;
+  double classify_s_per_chip = 0.0;
+  bool complete = false;  // every test chip was scored (false after Ctrl-C)
+
+  ConditionResult(std::size_t index, const SweepExperiment& e, const Model& m);
+};
+
+// Scores one test chip: `truth` indexes e.classes; r is the classifier's answer.
+void score_chip(ConditionResult& out, const SweepExperiment& e, const Model& m, std::size_t truth,
+                double aspect_deg, const Classification& r);
+
+// CSV files (header line included). Rates in percent.
+//   results: experiment,series,x_name,x,resolution_cm,class,n,errors,error_pct,ci_low_pct,
+//            ci_high_pct,train_per_class,p,aspect_sectors,render_ms_per_chip,train_s,
+//            classify_ms_per_chip,complete
+//   with class = a target key, "all" (identification over all classes) or "mine_vs_non_mine";
+//   the aspect experiment adds rows with x_name = "aspect_deg" (bin centre) per series.
+std::string results_csv(const SweepExperiment& e, const std::vector<ConditionResult>& results);
+//   confusion: experiment,series,x_name,x,truth,predicted,count
+std::string confusion_csv(const SweepExperiment& e, const std::vector<ConditionResult>& results);
+
+}  // namespace sonarloop::atr

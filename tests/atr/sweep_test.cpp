@@ -1,0 +1,165 @@
+// The pure parts of the resolution study (atr/sweep.h): rates and intervals, experiment
+// definitions, render groups, training prefixes, scoring and the CSV rows.
+#include "atr/sweep.h"
+
+#include <catch2/catch.hpp>
+#include <sstream>
+#include <stdexcept>
+
+namespace sonarloop::atr {
+namespace {
+
+using targets::TargetType;
+
+SweepSettings settings() {
+  SweepSettings s;
+  s.seabeds = {render::builtin_dataset_seabed("flat")};
+  return s;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  for (std::string l; std::getline(ss, l);)
+    out.push_back(l);
+  return out;
+}
+
+// A model with the given class names (one rank-0 subspace each, 1 x 2 chips).
+Model toy_model(const std::vector<std::string>& names) {
+  Model m;
+  m.chip_width = 2;
+  m.chip_height = 1;
+  for (const auto& n : names) {
+    ClassModel c;
+    c.name = n;
+    c.mine_like = default_mine_like(n);
+    Subspace s;
+    s.train_count = 1;
+    s.mean = Eigen::VectorXf::Zero(2);
+    s.basis = Eigen::MatrixXf(2, 0);
+    c.subspaces.push_back(s);
+    m.classes.push_back(c);
+  }
+  return m;
+}
+
+TEST_CASE("error_rate: rate and Wilson interval of the errors", "[sweep]") {
+  const ErrorRate r = error_rate(5, 100);
+  CHECK(r.rate == Approx(0.05));
+  // Wilson 95 % for 5/100: 2.15 % .. 11.18 % (standard tables)
+  CHECK(r.ci.lo == Approx(0.0215).margin(5e-4));
+  CHECK(r.ci.hi == Approx(0.1118).margin(5e-4));
+  const ErrorRate none = error_rate(0, 0);
+  CHECK(none.rate == 0.0);
+  CHECK(none.ci.lo == 0.0);
+  CHECK(none.ci.hi == 1.0);
+  const ErrorRate zero = error_rate(0, 40);
+  CHECK(zero.ci.lo == 0.0);
+  CHECK(zero.ci.hi > 0.05);  // 0 of 40 still allows ~9 %
+}
+
+TEST_CASE("experiments: the paper's figures and the stability studies", "[sweep]") {
+  const SweepSettings s = settings();
+  for (const auto& name : sweep_experiment_names())
+    CHECK_FALSE(make_sweep_experiment(name, s).conditions.empty());
+  CHECK_THROWS_AS(make_sweep_experiment("fig99", s), std::invalid_argument);
+
+  const SweepExperiment f11 = make_sweep_experiment("fig11", s);
+  REQUIRE(f11.conditions.size() == 15);  // 15 resolutions, 3 to 30 cm
+  CHECK(f11.conditions.front().x == 3.0);
+  CHECK(f11.conditions.back().x == 30.0);
+  CHECK(f11.classes.size() == 4);
+  CHECK(f11.conditions[2].train_count == 80);
+
+  const SweepExperiment f13 = make_sweep_experiment("fig13", s);
+  CHECK(f13.classes.size() == 7);
+  CHECK(f13.mine_groups);
+  const SweepExperiment f15 = make_sweep_experiment("fig15", s);
+  CHECK(f15.kind == render::ChipKind::kShadow);
+  CHECK(f15.conditions.front().x == 5.0);
+
+  SweepSettings two = s;
+  two.resolutions_cm = {5, 20};
+  CHECK(make_sweep_experiment("fig11", two).conditions.size() == 2);
+  // a stability study runs once per resolution, one series each
+  const SweepExperiment alt = make_sweep_experiment("altitude", two);
+  CHECK(alt.conditions.size() == 14);
+  CHECK(alt.conditions.front().series == "5 cm");
+  CHECK(alt.conditions.back().series == "20 cm");
+
+  // p must stay below the training count (the rank of k centred chips is k - 1)
+  SweepSettings few = s;
+  few.train_count = 10;
+  for (const auto& c : make_sweep_experiment("p", few).conditions)
+    CHECK(c.p < 10);
+}
+
+TEST_CASE("render_groups: conditions that render alike share chips", "[sweep]") {
+  SweepSettings s = settings();
+  s.resolutions_cm = {5, 10};
+  const SweepExperiment p = make_sweep_experiment("train_size", s);
+  const auto g = render_groups(p);
+  REQUIRE(g.size() == 1);  // same altitude and source level
+  REQUIRE(g[0].resolutions_m.size() == 2);
+  CHECK(g[0].members[0].size() == 7);
+  CHECK(g[0].train_count == 320);  // the largest training set, prefixes serve the others
+
+  const auto snr = render_groups(make_sweep_experiment("snr", s));
+  CHECK(snr.size() == 7);  // one renderer per source level
+  const render::ChipDatasetSpec train = render_group_spec(p, g[0], s, false);
+  const render::ChipDatasetSpec test = render_group_spec(p, g[0], s, true);
+  CHECK(train.seed != test.seed);
+  CHECK(train.resolutions_m == g[0].resolutions_m);
+}
+
+TEST_CASE("training_prefix keeps count chips per class", "[sweep]") {
+  std::vector<LabelledChip> chips(12);
+  for (std::size_t i = 0; i < chips.size(); ++i)
+    chips[i].label = std::to_string(i % 3);
+  const auto p = training_prefix(chips, 2, 3);
+  REQUIRE(p.size() == 6);
+  CHECK(p[5].label == "2");
+  CHECK(training_prefix(chips, 100, 3).size() == 12);
+}
+
+TEST_CASE("score_chip and results_csv: per class, all, mine / non-mine, aspect", "[sweep]") {
+  SweepSettings s = settings();
+  s.resolutions_cm = {5};
+  SweepExperiment e = make_sweep_experiment("fig13", s);
+  e.aspect_bins = 4;
+  std::vector<std::string> names;
+  for (TargetType t : e.classes)
+    names.emplace_back(targets::target_type_info(t).key);
+  const Model m = toy_model(names);  // classes in e.classes order
+  ConditionResult r(0, e, m);
+  Classification c;
+  // manta (truth 0) right twice; rockan (truth 1) called box (non-mine) once at aspect 100
+  c.class_index = 0;
+  c.mine_like = true;
+  score_chip(r, e, m, 0, 10.0, c);
+  score_chip(r, e, m, 0, 200.0, c);
+  c.class_index = 6;
+  c.mine_like = false;
+  score_chip(r, e, m, 1, 100.0, c);
+  r.complete = true;
+  CHECK(r.confusion.total() == 3);
+  CHECK(r.mine_errors == 1);
+  CHECK(r.aspect_errors[1 * 4 + 1] == 1);
+
+  const auto rows = lines(results_csv(e, {r}));
+  REQUIRE(rows.size() == 1 + 7 + 2 + 4 * 8);
+  CHECK(rows[0].rfind("experiment,series,x_name,x,resolution_cm,class,n,errors,", 0) == 0);
+  CHECK(rows[1].find(",manta,2,0,0.0000,") != std::string::npos);
+  CHECK(rows[2].find(",rockan,1,1,100.0000,") != std::string::npos);
+  CHECK(rows[8].find(",all,3,1,33.3333,") != std::string::npos);
+  CHECK(rows[9].find(",mine_vs_non_mine,3,1,33.3333,") != std::string::npos);
+  CHECK(rows[10].find("aspect_deg,45,") != std::string::npos);
+
+  const auto conf = lines(confusion_csv(e, {r}));
+  CHECK(conf.size() == 1 + 49);
+  CHECK(conf[1] == "fig13,,resolution_cm,5,manta,manta,2");
+}
+
+}  // namespace
+}  // namespace sonarloop::atr

@@ -1,0 +1,172 @@
+// End-to-end: a reduced `sonarloop sweep` as a user runs it. The paper's trend (Pailhas et al.
+// 2010, Fig. 11: identification from highlights degrades as pixels grow) must show with a wide
+// statistical margin; the CSV files must be complete and consistent; the counts must not depend
+// on the thread count; bad options must be refused with a clear message.
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/support/temp_dir.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+int run(const std::string& args, const std::string& log) {
+  return sonarloop::testing::run_command(kBinary + " " + args + " > '" + log + "' 2>&1");
+}
+
+using Row = std::map<std::string, std::string>;
+
+// Parses a CSV with a header line (no quoted fields: sweep writes none).
+std::vector<Row> read_csv(const fs::path& path) {
+  std::stringstream ss(slurp(path));
+  std::string line;
+  std::vector<std::string> header;
+  std::vector<Row> rows;
+  auto split = [](const std::string& l) {
+    std::vector<std::string> out;
+    std::stringstream ls(l);
+    std::string cell;
+    while (std::getline(ls, cell, ','))
+      out.push_back(cell);
+    if (!l.empty() && l.back() == ',') out.emplace_back();
+    return out;
+  };
+  if (std::getline(ss, line)) header = split(line);
+  while (std::getline(ss, line)) {
+    const auto cells = split(line);
+    REQUIRE(cells.size() == header.size());
+    Row r;
+    for (std::size_t i = 0; i < cells.size(); ++i)
+      r[header[i]] = cells[i];
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+const Row& find_row(const std::vector<Row>& rows, const std::string& x, const std::string& cls) {
+  for (const Row& r : rows) {
+    if (r.at("x") == x && r.at("class") == cls) return r;
+  }
+  FAIL("no row for x=" << x << " class=" << cls);
+  return rows.front();
+}
+
+double num(const Row& r, const std::string& key) {
+  return std::stod(r.at(key));
+}
+
+// The rows without their timing columns (which differ from run to run).
+std::string counts_only(const std::vector<Row>& rows) {
+  std::string out;
+  for (Row r : rows) {
+    r.erase("render_ms_per_chip");
+    r.erase("train_s");
+    r.erase("classify_ms_per_chip");
+    for (const auto& [k, v] : r)
+      out += k + "=" + v + ";";
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("sweep: help and bad options", "[sweep_cli]") {
+  const sonarloop::testing::TempDir dir("sweep_cli_help");
+  const std::string log = dir.file("log.txt");
+  REQUIRE(run("sweep --help", log) == 0);
+  CHECK(slurp(log).find("fig11") != std::string::npos);
+  CHECK(run("sweep --experiment fig99 --out " + dir.file("o"), log) == 2);
+  CHECK(slurp(log).find("fig99") != std::string::npos);
+  CHECK(slurp(log).find("fig11") != std::string::npos);  // the allowed names
+  CHECK(run("sweep --resolutions-cm 5,abc --out " + dir.file("o"), log) == 2);
+  CHECK(slurp(log).find("abc") != std::string::npos);
+  CHECK(run("sweep --non-mine manta --out " + dir.file("o"), log) == 2);
+  CHECK(slurp(log).find("mine-like") != std::string::npos);
+}
+
+TEST_CASE("sweep: highlights identify better at 5 cm than at 20 cm (Fig. 11 trend)",
+          "[sweep_cli]") {
+  const sonarloop::testing::TempDir dir("sweep_cli_trend");
+  const fs::path out = dir.path() / "out";
+  const std::string log = dir.file("log.txt");
+  // 4 targets x (40 training + 80 test) chips at each resolution: ~1000 chips, ~15 s on 2 cores
+  const int rc =
+      run("sweep --experiment fig11 --resolutions-cm 5,20 --train-count 40 "
+          "--test-count 80 --threads 2 --no-plot --out " +
+              out.string(),
+          log);
+  INFO(slurp(log));
+  REQUIRE(rc == 0);
+  const auto rows = read_csv(out / "fig11.csv");
+  REQUIRE(rows.size() == 2 * 5);  // 2 resolutions x (4 targets + all)
+  for (const Row& r : rows) {
+    CHECK(r.at("complete") == "1");
+    CHECK(num(r, "ci_low_pct") <= num(r, "error_pct"));
+    CHECK(num(r, "error_pct") <= num(r, "ci_high_pct"));
+    CHECK(num(r, "render_ms_per_chip") > 0.0);
+    CHECK(r.at("train_per_class") == "40");
+    CHECK(r.at("n") == (r.at("class") == "all" ? "320" : "80"));
+  }
+  const Row& fine = find_row(rows, "5", "all");
+  const Row& coarse = find_row(rows, "20", "all");
+  INFO("5 cm: " << fine.at("error_pct") << " % [" << fine.at("ci_low_pct") << ", "
+                << fine.at("ci_high_pct") << "], 20 cm: " << coarse.at("error_pct") << " % ["
+                << coarse.at("ci_low_pct") << ", " << coarse.at("ci_high_pct") << "]");
+  // measured: ~27 % at 5 cm and ~52 % at 20 cm; the 95 % intervals must not even touch
+  CHECK(num(fine, "ci_high_pct") < num(coarse, "ci_low_pct"));
+  CHECK(num(coarse, "error_pct") - num(fine, "error_pct") > 10.0);
+
+  // the confusion matrix holds every test chip once
+  const auto conf = read_csv(out / "fig11_confusion.csv");
+  REQUIRE(conf.size() == 2 * 16);
+  long total = 0;
+  for (const Row& r : conf)
+    total += std::stol(r.at("count"));
+  CHECK(total == 2 * 320);
+
+  // the chart script draws the curve and the confusion matrices (when matplotlib is there)
+  const std::string python = SONARLOOP_PYTHON;
+  if (sonarloop::testing::run_command(python + " -c 'import matplotlib' > /dev/null 2>&1") != 0) {
+    WARN("matplotlib not available: chart script not checked");
+    return;
+  }
+  const std::string script = std::string(SONARLOOP_SOURCE_DIR) + "/tools/plot_sweep.py";
+  REQUIRE(sonarloop::testing::run_command(python + " " + script + " " + out.string() + " > '" +
+                                          log + "' 2>&1") == 0);
+  for (const char* png : {"fig11.png", "fig11_confusion.png", "speed_accuracy.png"}) {
+    INFO(png);
+    CHECK(fs::file_size(out / png) > 1000);
+  }
+}
+
+TEST_CASE("sweep: the same seed gives the same counts on any number of threads", "[sweep_cli]") {
+  const sonarloop::testing::TempDir dir("sweep_cli_threads");
+  const std::string log = dir.file("log.txt");
+  const std::string common =
+      "sweep --experiment fig13 --resolutions-cm 20 --train-count 6 --test-count 5 --p 4 "
+      "--no-plot --seed 3 ";
+  REQUIRE(run(common + "--threads 1 --out " + dir.file("a"), log) == 0);
+  REQUIRE(run(common + "--threads 2 --out " + dir.file("b"), log) == 0);
+  const auto a = read_csv(dir.path() / "a" / "fig13.csv");
+  const auto b = read_csv(dir.path() / "b" / "fig13.csv");
+  REQUIRE(a.size() == 7 + 2);  // 7 targets, all, mine_vs_non_mine
+  CHECK(counts_only(a) == counts_only(b));
+  CHECK(slurp(dir.path() / "a" / "fig13_confusion.csv") ==
+        slurp(dir.path() / "b" / "fig13_confusion.csv"));
+}

@@ -1,0 +1,18 @@
+#pragma once
+// Small helpers shared by the sonarloop subcommands: comma lists and a Ctrl-C stop flag.
+// (cmd_dataset, cmd_run and cmd_train still carry their own copies; they can move here.)
+#include <string>
+#include <vector>
+
+namespace sonarloop::tools {
+
+// "a, b,,c" -> {"a", "b", "c"}: items trimmed of blanks and tabs, empty items dropped.
+std::vector<std::string> split_comma_list(const std::string& text);
+
+// Installs a SIGINT / SIGTERM handler that sets the stop flag and then resets itself
+// (SA_RESETHAND), so that a second Ctrl-C ends the process at once. Clears the flag.
+void install_stop_flag();
+// Whether SIGINT or SIGTERM arrived since install_stop_flag(). Async-signal-safe to poll.
+bool stop_requested();
+
+}  // namespace sonarloop::tools

@@ -1,0 +1,414 @@
+// sonarloop sweep: the resolution study of Pailhas, Petillot & Capus (2010), Sections 3-4, in
+// memory: chips from the chip renderer, the eigen-subspace classifier, misidentification with
+// 95 % Wilson intervals per target and condition, CSV files and charts (tools/plot_sweep.py).
+// The experiments and the scoring live in atr/sweep.h; this file renders, times and writes.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <thread>
+
+#include "atr/sweep.h"
+#include "config/loader/scenario_loader.h"
+#include "config/loader/sonar_loader.h"
+#include "sim/render/chip_renderer.h"
+#include "tools/args.h"
+#include "tools/cli_helpers.h"
+#include "tools/commands.h"
+#include "tools/progress.h"
+
+#ifndef SONARLOOP_SWEEP_PLOT_SCRIPT
+#define SONARLOOP_SWEEP_PLOT_SCRIPT "tools/plot_sweep.py"
+#endif
+
+namespace sonarloop::tools {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr const char* kDefaultSeabeds = "flat,ripples,clutter";
+constexpr const char* kPython = "/usr/bin/python3";
+
+std::vector<double> parse_resolutions_cm(const std::string& text) {
+  std::vector<double> out;
+  for (const std::string& t : split_comma_list(text)) {
+    char* end = nullptr;
+    const double cm = std::strtod(t.c_str(), &end);
+    if (*end != '\0' || !(cm >= 0.5 && cm <= 100.0)) {
+      throw UsageError("--resolutions-cm: '" + t + "' is not a number of centimetres in 0.5..100");
+    }
+    if (std::find(out.begin(), out.end(), cm) != out.end()) {
+      throw UsageError("--resolutions-cm: " + t + " is listed twice");
+    }
+    out.push_back(cm);
+  }
+  if (out.empty()) throw UsageError("--resolutions-cm: no resolution given");
+  return out;
+}
+
+std::vector<targets::TargetType> parse_non_mine(const std::string& text) {
+  std::vector<targets::TargetType> out;
+  for (const std::string& key : split_comma_list(text)) {
+    const auto t = targets::find_target_type(key);
+    if (!t) {
+      throw UsageError("--non-mine: unknown target type '" + key +
+                       "' (allowed: " + targets::target_type_keys_list() + ")");
+    }
+    if (targets::target_type_info(*t).mine_like) {
+      throw UsageError("--non-mine: '" + key + "' is mine-like; choose among the non-mine types");
+    }
+    out.push_back(*t);
+  }
+  if (out.empty()) throw UsageError("--non-mine: no target type given");
+  return out;
+}
+
+std::vector<render::DatasetSeabed> parse_seabeds(const std::string& text) {
+  std::vector<render::DatasetSeabed> out;
+  for (const std::string& item : split_comma_list(text)) {
+    try {
+      out.push_back(render::builtin_dataset_seabed(item));
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--seabed: ") + e.what());
+    }
+  }
+  if (out.empty()) throw UsageError("--seabed: no seabed given");
+  return out;
+}
+
+void write_file(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    if (!out) throw std::runtime_error("cannot write '" + tmp.string() + "'");
+  }
+  fs::rename(tmp, path);
+}
+
+// Renders jobs at one resolution slot, handing chips to `sink` in index order. Returns the
+// number of chips rendered (fewer after a stop request) and the wall time.
+std::size_t render_slot(const render::ChipRenderer& r, int slot, std::size_t count, int threads,
+                        const std::function<void(const render::ChipImage&)>& sink, double* wall_s) {
+  std::vector<render::ChipJob> jobs(count);
+  for (std::size_t i = 0; i < count; ++i)
+    jobs[i] = render::ChipJob{i, slot};
+  const auto t0 = Clock::now();
+  const std::size_t done =
+      render::render_chips(r, jobs, threads, sink, [] { return stop_requested(); });
+  *wall_s = seconds_since(t0);
+  return done;
+}
+
+struct RunContext {
+  atr::SweepSettings settings;
+  int threads = 1;
+  fs::path out_dir;
+  Progress* bar = nullptr;
+  double chips_done = 0.0;
+};
+
+// One condition being tested: its classifier and its scores.
+struct Trial {
+  std::unique_ptr<atr::Classifier> classifier;
+  std::unique_ptr<atr::ConditionResult> result;
+  double classify_s = 0.0;
+  std::size_t classified = 0;
+};
+
+void print_result(const atr::SweepExperiment& e, const atr::ConditionResult& r) {
+  const atr::SweepCondition& c = e.conditions[r.condition];
+  const auto& cm = r.confusion;
+  const atr::ErrorRate er = atr::error_rate(cm.total() - cm.correct(), cm.total());
+  std::printf("%-10s %-22s %s=%-6g misidentified %6.2f %% [%5.2f, %5.2f] of %zu", e.name.c_str(),
+              c.series.c_str(), c.x_name.c_str(), c.x, 100.0 * er.rate, 100.0 * er.ci.lo,
+              100.0 * er.ci.hi, er.n);
+  if (e.mine_groups) {
+    const atr::ErrorRate m = atr::error_rate(r.mine_errors, r.mine_n);
+    std::printf(", mine/non-mine %5.2f %% [%5.2f, %5.2f]", 100.0 * m.rate, 100.0 * m.ci.lo,
+                100.0 * m.ci.hi);
+  }
+  if (r.rejected > 0) std::printf(", %zu degenerate chips not scored", r.rejected);
+  std::printf("; render %.1f ms/chip, train %.2f s, classify %.3f ms/chip%s\n",
+              1e3 * r.render_s_per_chip, r.train_s, 1e3 * r.classify_s_per_chip,
+              r.complete ? "" : " (interrupted)");
+  std::fflush(stdout);
+}
+
+// Runs one experiment; returns false when stopped.
+bool run_experiment(const atr::SweepExperiment& e, RunContext& ctx,
+                    std::vector<atr::ConditionResult>& results) {
+  const std::size_t classes = e.classes.size();
+  const auto write_all = [&] {
+    write_file(ctx.out_dir / (e.name + ".csv"), atr::results_csv(e, results));
+    write_file(ctx.out_dir / (e.name + "_confusion.csv"), atr::confusion_csv(e, results));
+  };
+  for (const atr::RenderGroup& g : atr::render_groups(e)) {
+    const render::ChipRenderer train_r(atr::render_group_spec(e, g, ctx.settings, false));
+    const render::ChipRenderer test_r(atr::render_group_spec(e, g, ctx.settings, true));
+    for (std::size_t slot = 0; slot < g.resolutions_m.size(); ++slot) {
+      // training chips, shared by the conditions of this resolution
+      std::vector<atr::LabelledChip> train;
+      double wall_s = 0.0;
+      const std::size_t n_train = static_cast<std::size_t>(g.train_count) * classes;
+      const std::size_t got = render_slot(
+          train_r, static_cast<int>(slot), n_train, ctx.threads,
+          [&](const render::ChipImage& c) {
+            train.push_back(atr::labelled_chip(c));
+            ctx.bar->update(++ctx.chips_done);
+          },
+          &wall_s);
+      if (got < n_train) return false;
+      const double train_wall_s = wall_s;
+
+      std::vector<Trial> trials;
+      for (std::size_t ci : g.members[slot]) {
+        const atr::SweepCondition& c = e.conditions[ci];
+        atr::TrainOptions opt;
+        opt.p = c.p;
+        opt.aspect_sectors = c.aspect_sectors;
+        opt.skip_degenerate = true;
+        const auto t0 = Clock::now();
+        atr::Model model =
+            atr::train_model(atr::training_prefix(train, c.train_count, classes), opt);
+        Trial t;
+        t.result = std::make_unique<atr::ConditionResult>(ci, e, model);
+        t.result->train_s = seconds_since(t0);
+        t.classifier = std::make_unique<atr::Classifier>(std::move(model));
+        trials.push_back(std::move(t));
+      }
+      train.clear();
+
+      // test chips: every condition classifies each one
+      const std::size_t n_test = static_cast<std::size_t>(e.test_count) * classes;
+      std::vector<float> pixels;
+      const std::size_t tested = render_slot(
+          test_r, static_cast<int>(slot), n_test, ctx.threads,
+          [&](const render::ChipImage& c) {
+            pixels.assign(c.pixels.begin(), c.pixels.end());
+            const atr::ChipView view{c.cols, c.rows, pixels};
+            const auto truth = static_cast<std::size_t>(
+                std::find(e.classes.begin(), e.classes.end(), c.params.type) - e.classes.begin());
+            for (Trial& t : trials) {
+              const auto t0 = Clock::now();
+              const atr::ChipCheck check = t.classifier->classify(view);
+              t.classify_s += seconds_since(t0);
+              if (!check.ok()) {
+                ++t.result->rejected;
+                continue;
+              }
+              ++t.classified;
+              atr::score_chip(*t.result, e, t.classifier->model(), truth, c.params.aspect_deg,
+                              t.classifier->result());
+            }
+            ctx.bar->update(++ctx.chips_done);
+          },
+          &wall_s);
+      // thread-seconds per chip over both sets (including the seabed tiles made on the way;
+      // the classification in the sink overlaps the workers' rendering)
+      const double render_s_per_chip = (train_wall_s + wall_s) * ctx.threads /
+                                       static_cast<double>(got + std::max<std::size_t>(tested, 1));
+      for (Trial& t : trials) {
+        t.result->render_s_per_chip = render_s_per_chip;
+        t.result->complete = tested == n_test;
+        t.result->classify_s_per_chip =
+            t.classified ? t.classify_s / static_cast<double>(t.classified) : 0.0;
+        if (tested == 0) continue;
+        print_result(e, *t.result);
+        results.push_back(std::move(*t.result));
+      }
+      if (tested > 0) {
+        std::sort(results.begin(), results.end(),
+                  [](const auto& a, const auto& b) { return a.condition < b.condition; });
+        write_all();
+      }
+      if (tested < n_test) return false;
+    }
+  }
+  return true;
+}
+
+// Total chips an experiment renders, for the progress bar.
+double experiment_chips(const atr::SweepExperiment& e) {
+  double total = 0.0;
+  for (const atr::RenderGroup& g : atr::render_groups(e)) {
+    total += static_cast<double>(g.resolutions_m.size()) * static_cast<double>(e.classes.size()) *
+             (g.train_count + e.test_count);
+  }
+  return total;
+}
+
+bool matplotlib_available(const std::string& python) {
+  const std::string cmd = python + " -c 'import matplotlib' >/dev/null 2>&1";
+  return std::system(cmd.c_str()) == 0;
+}
+
+void plot(const fs::path& out_dir, bool enabled) {
+  const std::string script = SONARLOOP_SWEEP_PLOT_SCRIPT;
+  const std::string python = fs::exists(kPython) ? kPython : "python3";
+  const std::string cmd = python + " '" + script + "' '" + out_dir.string() + "'";
+  if (!enabled) return;
+  if (!fs::exists(script) || !matplotlib_available(python)) {
+    std::printf("charts: matplotlib or %s not found; run: %s\n", script.c_str(), cmd.c_str());
+    return;
+  }
+  if (std::system(cmd.c_str()) != 0) {
+    std::fprintf(stderr, "sonarloop sweep: the chart script failed: %s\n", cmd.c_str());
+  }
+}
+
+int run_sweep(const std::vector<std::string>& argv) {
+  const Args args(argv, {{"--experiment", true, true},
+                         {"--test-count"},
+                         {"--train-count"},
+                         {"--resolutions-cm"},
+                         {"--p"},
+                         {"--seed"},
+                         {"--threads"},
+                         {"--out"},
+                         {"--seabed"},
+                         {"--non-mine"},
+                         {"--sonar"},
+                         {"--no-plot", false}});
+  if (!args.positionals().empty()) {
+    throw UsageError("unexpected argument '" + args.positionals()[0] + "'");
+  }
+  RunContext ctx;
+  atr::SweepSettings& s = ctx.settings;
+  s.seed = static_cast<std::uint64_t>(
+      args.get_int("--seed", 0, std::numeric_limits<long long>::max() - 1).value_or(0));
+  s.train_count = static_cast<int>(args.get_int("--train-count", 2, 100000).value_or(80));
+  s.test_count = static_cast<int>(args.get_int("--test-count", 1, 10'000'000).value_or(100));
+  s.p = static_cast<int>(args.get_int("--p", 1, 4096).value_or(atr::kDefaultSubspaceDim));
+  if (const auto r = args.get("--resolutions-cm")) s.resolutions_cm = parse_resolutions_cm(*r);
+  if (const auto n = args.get("--non-mine")) s.non_mine = parse_non_mine(*n);
+  s.seabeds = parse_seabeds(args.get_or("--seabed", kDefaultSeabeds));
+  const std::string sonar_arg = args.get_or("--sonar", std::string(config::kDefaultSonarPreset));
+  const std::string ext = fs::path(sonar_arg).extension().string();
+  s.sonar = ext == ".yaml" || ext == ".yml" ? config::load_sonar(sonar_arg)
+                                            : config::builtin_sonar(sonar_arg);
+  ctx.threads = static_cast<int>(args.get_int("--threads", 1, 256)
+                                     .value_or(std::max(1u, std::thread::hardware_concurrency())));
+  ctx.out_dir = args.get_or("--out", "sweep_out");
+
+  std::vector<std::string> names = args.get_all("--experiment");
+  if (names.empty()) names = {"fig11"};
+  if (std::find(names.begin(), names.end(), "all") != names.end())
+    names = atr::sweep_experiment_names();
+  std::vector<atr::SweepExperiment> experiments;
+  for (const std::string& n : names) {
+    try {
+      experiments.push_back(atr::make_sweep_experiment(n, s));
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--experiment: ") + e.what());
+    }
+    if (experiments.back().conditions.empty()) {
+      throw UsageError("--experiment " + n + ": no condition left (e.g. every p >= --train-count)");
+    }
+  }
+  fs::create_directories(ctx.out_dir);
+
+  double total = 0.0;
+  for (const auto& e : experiments)
+    total += experiment_chips(e);
+  install_stop_flag();
+  const auto t0 = Clock::now();
+  bool stopped = false;
+  {
+    Progress bar("sweep: " + std::to_string(static_cast<long long>(total)) + " chips", total);
+    ctx.bar = &bar;
+    for (const auto& e : experiments) {
+      std::fprintf(stderr, "sonarloop sweep: %s: %s (%zu conditions)\n", e.name.c_str(),
+                   e.title.c_str(), e.conditions.size());
+      std::vector<atr::ConditionResult> results;
+      if (!run_experiment(e, ctx, results)) {
+        stopped = true;
+        break;
+      }
+    }
+    bar.finish();
+  }
+  const double secs = seconds_since(t0);
+  std::printf("rendered %.0f chips in %.1f s (%.1f chips/s, %d threads); results in %s\n",
+              ctx.chips_done, secs, ctx.chips_done / std::max(secs, 1e-9), ctx.threads,
+              ctx.out_dir.string().c_str());
+  if (stopped) {
+    std::fprintf(stderr,
+                 "sonarloop sweep: interrupted; the CSV files in '%s' hold every condition "
+                 "scored so far (complete = 0 marks a partly tested one)\n",
+                 ctx.out_dir.string().c_str());
+  }
+  std::fflush(stdout);  // before the chart script writes to the same stream
+  plot(ctx.out_dir, !args.has("--no-plot"));
+  return stopped ? 130 : 0;
+}
+
+}  // namespace
+
+const Command kSweepCommand{
+    "sweep", "the paper's resolution study: misidentification against pixel resolution and more",
+    R"(usage: sonarloop sweep [--experiment NAME ...] [options]
+
+Reproduces the resolution study of Pailhas, Petillot & Capus (2010), Sections 3-4, in memory:
+for each condition it renders training chips (dataset seed S) and test chips (seed S + 1) with
+the chip renderer of `sonarloop dataset`, trains the eigen-subspace classifier of
+`sonarloop train` and scores every test chip: misidentification per target with a 95 % Wilson
+interval, the confusion matrix, render and classification time per chip.
+
+experiments (--experiment, repeatable, or 'all'; default fig11):
+  fig11       Manta, Rockan, cuboid, cylinder from highlights, 15 resolutions 3-30 cm (Fig. 11)
+  fig13       the same four plus three non-mine shapes (--non-mine): identification and the
+              mine / non-mine decision error against resolution (Fig. 13)
+  fig15       the four targets from their shadows, 5-30 cm (Fig. 15)
+  aspect      error per 30 deg of target aspect, one subspace per target against 4 and 8
+              aspect-sector subspaces, trained on 2 x --train-count chips per target
+  snr         source level 210 down to 130 dB (the noise stays: SNR falls dB for dB), 5 cm
+  altitude    fixed sonar altitudes 2-20 m (grazing angle), 5 cm
+  train_size  5-320 training chips per target, 5 cm
+  p           subspace dimension 1-79 (below --train-count), 5 cm
+The stability studies (aspect, snr, altitude, train_size, p) run at 5 cm, or at each of
+--resolutions-cm (one curve each); fig11/13/15 take --resolutions-cm as their x axis.
+
+Writes to --out DIR (rewritten after every resolution, so an interrupted run keeps its results):
+  NAME.csv            experiment,series,x_name,x,resolution_cm,class,n,errors,error_pct,
+                      ci_low_pct,ci_high_pct,train_per_class,p,aspect_sectors,
+                      render_ms_per_chip,train_s,classify_ms_per_chip,complete
+                      (class: a target, 'all', or 'mine_vs_non_mine'; render time is
+                      thread-seconds per chip)
+  NAME_confusion.csv  experiment,series,x_name,x,truth,predicted,count
+  *.png               charts by tools/plot_sweep.py (run when matplotlib is available,
+                      otherwise the command is printed)
+The paper used 80 training chips per target and 40,000 test chips per resolution; the default
+--test-count 100 per target takes minutes and gives intervals of about +-5-9 points.
+
+options:
+  --experiment NAME    see above (repeatable; 'all' for every one)
+  --test-count N       test chips per target and condition (default 100)
+  --train-count N      training chips per target (default 80, as the paper)
+  --resolutions-cm L   comma list of pixel sizes in cm (default: per experiment)
+  --p N                leading eigenvectors per subspace (default 20)
+  --seed S             training dataset seed; the test set uses S + 1 (default 0)
+  --threads N          render threads (default: all cores)
+  --out DIR            output folder (default sweep_out)
+  --seabed LIST        seabed kinds: flat, ripples, clutter, rocky (default flat,ripples,clutter)
+  --non-mine LIST      fig13's non-mine shapes (default large_cuboid,hemisphere,box)
+  --sonar NAME|FILE    sonar preset or YAML (default pailhas_strip; bin and pulse set per R)
+  --no-plot            do not run the chart script
+
+Ctrl-C stops after the chip in progress; the CSV files keep every condition scored so far.
+Same --seed and counts give the same counts and rates on any --threads (times differ).
+
+examples:
+  sonarloop sweep --experiment fig11 --out out/sweep
+  sonarloop sweep --experiment fig11 --resolutions-cm 5,20 --train-count 40 --test-count 50
+  sonarloop sweep --experiment all --test-count 1000 --out /tmp/sweep_big
+)",
+    run_sweep, 65};
+SONARLOOP_REGISTER_COMMAND(kSweepCommand);
+
+}  // namespace sonarloop::tools

@@ -1,0 +1,236 @@
+#!/usr/bin/env python3
+"""Charts of a `sonarloop sweep` output folder (Pailhas, Petillot & Capus 2010, Figs. 11/13/15).
+
+usage: python3 tools/plot_sweep.py OUT_DIR
+
+Reads OUT_DIR/NAME.csv and NAME_confusion.csv as `sonarloop sweep` writes them and draws, next
+to them:
+  NAME.png             misidentification (%) per target against the experiment's x (pixel
+                       resolution for fig11/13/15), with 95 % Wilson intervals; fig13 adds the
+                       mine / non-mine decision error
+  aspect.png           error against target aspect, one curve per subspace layout
+  NAME_confusion.png   row-normalised confusion matrices, one per condition
+  speed_accuracy.png   render and classification time per chip against accuracy, across
+                       resolution (fig11) and p
+Only the Python standard library and matplotlib (Agg backend) are used.
+"""
+import csv
+import os
+import sys
+from collections import OrderedDict, defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+DPI = 90
+LOG_X = {"train_per_class", "p"}
+X_LABEL = {
+    "resolution_cm": "pixel resolution (cm)",
+    "aspect_deg": "target aspect (deg)",
+    "source_level_db": "source level (dB re 1 uPa at 1 m)",
+    "altitude_m": "sonar altitude (m)",
+    "train_per_class": "training chips per target",
+    "p": "subspace dimension p",
+    "aspect_sectors": "aspect sectors",
+}
+
+
+def read_rows(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def series_of(rows):
+    out = OrderedDict()
+    for r in rows:
+        out.setdefault(r["series"], []).append(r)
+    return out
+
+
+def curve(rows, cls, x_name):
+    pts = [r for r in rows if r["class"] == cls and r["x_name"] == x_name]
+    pts.sort(key=lambda r: float(r["x"]))
+    x = [float(r["x"]) for r in pts]
+    y = [float(r["error_pct"]) for r in pts]
+    lo = [float(r["error_pct"]) - float(r["ci_low_pct"]) for r in pts]
+    hi = [float(r["ci_high_pct"]) - float(r["error_pct"]) for r in pts]
+    return x, y, lo, hi
+
+
+def classes_of(rows):
+    seen = []
+    for r in rows:
+        if r["class"] not in seen:
+            seen.append(r["class"])
+    return seen
+
+
+def plot_error_curves(name, rows, out_dir):
+    """One panel per series: error per class against x (fig11/13/15 and the stability runs)."""
+    groups = series_of([r for r in rows if r["x_name"] != "aspect_deg"])
+    x_name = rows[0]["x_name"]
+    mine = any(r["class"] == "mine_vs_non_mine" for r in rows)
+    panels = len(groups) + (1 if mine else 0)
+    fig, axes = plt.subplots(1, panels, figsize=(6.0 * panels, 4.2), squeeze=False)
+    for ax, (series, srows) in zip(axes[0], groups.items()):
+        for cls in classes_of(srows):
+            if cls == "mine_vs_non_mine":
+                continue
+            x, y, lo, hi = curve(srows, cls, x_name)
+            style = dict(lw=2.5, color="black") if cls == "all" else dict(lw=1.2)
+            ax.errorbar(x, y, yerr=[lo, hi], marker="o", ms=3, capsize=2, label=cls, **style)
+        ax.set_title(f"{name} {series}".strip() + ": misidentification")
+        ax.set_xlabel(X_LABEL.get(x_name, x_name))
+        ax.set_ylabel("misidentification (%)")
+        ax.set_ylim(0, 100)
+        if x_name in LOG_X:
+            ax.set_xscale("log")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    if mine:
+        ax = axes[0][-1]
+        for series, srows in groups.items():
+            x, y, lo, hi = curve(srows, "mine_vs_non_mine", x_name)
+            ax.errorbar(x, y, yerr=[lo, hi], marker="o", ms=3, capsize=2, label=series or "all")
+        ax.set_title(f"{name}: mine / non-mine decision error")
+        ax.set_xlabel(X_LABEL.get(x_name, x_name))
+        ax.set_ylabel("error (%)")
+        ax.set_ylim(0, None)
+        ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out_dir, f"{name}.png"), dpi=DPI)
+    plt.close(fig)
+
+
+def plot_aspect(rows, out_dir):
+    groups = series_of([r for r in rows if r["x_name"] == "aspect_deg"])
+    if not groups:
+        return
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    for series, srows in groups.items():
+        x, y, lo, hi = curve(srows, "all", "aspect_deg")
+        overall = [r for r in rows if r["series"] == series and r["class"] == "all"
+                   and r["x_name"] != "aspect_deg"]
+        label = series
+        if overall:
+            label += f" (overall {float(overall[0]['error_pct']):.1f} %)"
+        ax.errorbar(x, y, yerr=[lo, hi], marker="o", ms=3, capsize=2, label=label)
+    ax.set_xlabel(X_LABEL["aspect_deg"])
+    ax.set_ylabel("misidentification (%)")
+    ax.set_xticks(range(0, 361, 45))
+    ax.set_ylim(0, None)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title("error against aspect: one subspace vs aspect-sector subspaces")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out_dir, "aspect.png"), dpi=DPI)
+    plt.close(fig)
+
+
+def plot_confusion(name, path, out_dir):
+    rows = read_rows(path)
+    mats = OrderedDict()
+    for r in rows:
+        key = (r["series"], r["x_name"], float(r["x"]))
+        mats.setdefault(key, defaultdict(int))[(r["truth"], r["predicted"])] += int(r["count"])
+    if not mats:
+        return
+    n = len(mats)
+    cols = min(n, 5)
+    nrows = (n + cols - 1) // cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(2.6 * cols, 2.6 * nrows), squeeze=False)
+    for ax in axes.flat:
+        ax.axis("off")
+    for ax, ((series, x_name, x), m) in zip(axes.flat, mats.items()):
+        truths = list(OrderedDict.fromkeys(t for t, _ in m))
+        preds = list(OrderedDict.fromkeys(p for _, p in m))
+        # predictions in the truth order, so that the diagonal is the correct answers
+        preds = [t for t in truths if t in preds] + [p for p in preds if p not in truths]
+        grid = []
+        for t in truths:
+            total = sum(m[(t, p)] for p in preds) or 1
+            grid.append([m[(t, p)] / total for p in preds])
+        ax.axis("on")
+        ax.imshow(grid, vmin=0, vmax=1, cmap="Blues")
+        ax.set_xticks(range(len(preds)))
+        ax.set_xticklabels([p[:4] for p in preds], fontsize=6, rotation=90)
+        ax.set_yticks(range(len(truths)))
+        ax.set_yticklabels([t[:4] for t in truths], fontsize=6)
+        for i, row in enumerate(grid):
+            for j, v in enumerate(row):
+                if v >= 0.05:
+                    ax.text(j, i, f"{100 * v:.0f}", ha="center", va="center", fontsize=5,
+                            color="white" if v > 0.6 else "black")
+        ax.set_title(f"{series} {x_name}={x:g}".strip(), fontsize=7)
+    fig.suptitle(f"{name}: confusion (rows: truth, % of row)", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out_dir, f"{name}_confusion.png"), dpi=DPI)
+    plt.close(fig)
+
+
+def plot_speed_accuracy(tables, out_dir):
+    """Render and classification time per chip against accuracy (fig11 across R, p across p)."""
+    pts = []  # (label, render_ms, classify_ms, accuracy_pct, kind)
+    for name, rows in tables.items():
+        if name not in ("fig11", "p"):
+            continue
+        for r in rows:
+            if r["class"] != "all" or r["x_name"] == "aspect_deg":
+                continue
+            acc = 100.0 - float(r["error_pct"])
+            label = (f"{float(r['x']):g} cm" if r["x_name"] == "resolution_cm"
+                     else f"p={float(r['x']):g}")
+            pts.append((label, float(r["render_ms_per_chip"]), float(r["classify_ms_per_chip"]),
+                        acc, name))
+    if not pts:
+        return
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.2))
+    for ax, idx, what in ((axes[0], 1, "render"), (axes[1], 2, "classification")):
+        for kind, marker in (("fig11", "o"), ("p", "s")):
+            sel = [p for p in pts if p[4] == kind]
+            if not sel:
+                continue
+            ax.scatter([p[idx] for p in sel], [p[3] for p in sel], marker=marker,
+                       label="across resolution (fig11)" if kind == "fig11" else "across p (5 cm)")
+            for p in sel:
+                ax.annotate(p[0], (p[idx], p[3]), fontsize=6, xytext=(3, 2),
+                            textcoords="offset points")
+        ax.set_xscale("log")
+        ax.set_xlabel(f"{what} time per chip (ms{', thread-seconds' if idx == 1 else ''})")
+        ax.set_ylabel("correct identification (%)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle("speed against accuracy", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out_dir, "speed_accuracy.png"), dpi=DPI)
+    plt.close(fig)
+
+
+def main(argv):
+    if len(argv) != 2 or argv[1] in ("-h", "--help"):
+        print(__doc__)
+        return 2
+    out_dir = argv[1]
+    tables = OrderedDict()
+    for fname in sorted(os.listdir(out_dir)):
+        if fname.endswith(".csv") and not fname.endswith("_confusion.csv"):
+            rows = read_rows(os.path.join(out_dir, fname))
+            if rows:
+                tables[fname[:-4]] = rows
+    for name, rows in tables.items():
+        if name == "aspect":
+            plot_aspect(rows, out_dir)
+        else:
+            plot_error_curves(name, rows, out_dir)
+        conf = os.path.join(out_dir, f"{name}_confusion.csv")
+        if os.path.exists(conf) and name != "aspect":
+            plot_confusion(name, conf, out_dir)
+    plot_speed_accuracy(tables, out_dir)
+    print(f"charts written to {out_dir}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

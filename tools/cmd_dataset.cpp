@@ -2,10 +2,8 @@
 // training and testing target recognition (Pailhas et al. 2010, Section 4). The chips come
 // from sim/render/chip_renderer.h; this file chooses the options and writes the files.
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -14,7 +12,6 @@
 #include <limits>
 #include <memory>
 #include <set>
-#include <sstream>
 #include <thread>
 
 #include "config/loader/scenario_loader.h"
@@ -24,6 +21,7 @@
 #include "sim/render/chip_renderer.h"
 #include "sim/targets/target_type.h"
 #include "tools/args.h"
+#include "tools/cli_helpers.h"
 #include "tools/commands.h"
 #include "tools/progress.h"
 
@@ -39,46 +37,6 @@ constexpr long long kDefaultCountPerClass = 100;
 // Chip file names carry the index zero-padded to at least this many digits (they sort).
 constexpr int kMinIndexDigits = 6;
 
-// Set by SIGINT / SIGTERM; polled by the chip workers between chips.
-std::atomic<bool> g_stop{false};
-static_assert(std::atomic<bool>::is_always_lock_free);
-
-void on_stop_signal(int) {
-  g_stop.store(true);
-}
-
-// Installs the stop handler for SIGINT and SIGTERM for the lifetime of the object.
-class StopSignals {
- public:
-  StopSignals() {
-    g_stop.store(false);
-    old_int_ = std::signal(SIGINT, on_stop_signal);
-    old_term_ = std::signal(SIGTERM, on_stop_signal);
-  }
-  ~StopSignals() {
-    std::signal(SIGINT, old_int_);
-    std::signal(SIGTERM, old_term_);
-  }
-  StopSignals(const StopSignals&) = delete;
-  StopSignals& operator=(const StopSignals&) = delete;
-
- private:
-  void (*old_int_)(int) = SIG_DFL;
-  void (*old_term_)(int) = SIG_DFL;
-};
-
-std::vector<std::string> split_list(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    const auto a = item.find_first_not_of(" \t");
-    const auto b = item.find_last_not_of(" \t");
-    if (a != std::string::npos) out.push_back(item.substr(a, b - a + 1));
-  }
-  return out;
-}
-
 std::vector<targets::TargetType> parse_classes(const std::string& text) {
   std::vector<targets::TargetType> out;
   if (text == "all") {
@@ -86,7 +44,7 @@ std::vector<targets::TargetType> parse_classes(const std::string& text) {
       out.push_back(info.type);
     return out;
   }
-  for (const std::string& key : split_list(text)) {
+  for (const std::string& key : split_comma_list(text)) {
     const auto t = targets::find_target_type(key);
     if (!t) {
       throw UsageError("--classes: unknown target type '" + key + "' (allowed: 'all' or a comma " +
@@ -110,7 +68,7 @@ bool is_yaml_path(const std::string& s) {
 std::vector<render::DatasetSeabed> parse_seabeds(const std::string& text) {
   std::vector<render::DatasetSeabed> out;
   std::set<std::string> names;
-  for (const std::string& item : split_list(text)) {
+  for (const std::string& item : split_comma_list(text)) {
     render::DatasetSeabed s;
     if (is_yaml_path(item)) {
       s.desc = config::load_scenario(item).scene;  // ConfigError names the file and key
@@ -378,7 +336,7 @@ int run_dataset(const std::vector<std::string>& argv) {
   Progress bar("rendering " + std::to_string(jobs.size()) + " chips",
                static_cast<double>(jobs.size()));
   std::size_t written = 0;
-  const StopSignals signals;
+  install_stop_flag();  // polled by the chip workers between chips
   const std::size_t done = render::render_chips(
       renderer, jobs, threads,
       [&](const render::ChipImage& c) {
@@ -401,7 +359,7 @@ int run_dataset(const std::vector<std::string>& argv) {
         ++written;
         bar.update(static_cast<double>(written));
       },
-      [] { return g_stop.load(); });
+      [] { return stop_requested(); });
   bar.finish();
   const double secs = seconds_since(t0);
   if (done < jobs.size()) {

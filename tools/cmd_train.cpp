@@ -1,7 +1,6 @@
 // sonarloop train: train the PCA (eigen-subspace) classifier on a folder of PNG chips.
 #include <chrono>
 #include <cstdio>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -9,21 +8,12 @@
 #include "atr/model_file.h"
 #include "atr/subspace_classifier.h"
 #include "tools/args.h"
+#include "tools/cli_helpers.h"
 #include "tools/commands.h"
 #include "tools/progress.h"
 
 namespace sonarloop::tools {
 namespace {
-
-std::vector<std::string> split_list(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    if (!item.empty()) out.push_back(item);
-  }
-  return out;
-}
 
 int run_train(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--out"},
@@ -40,7 +30,7 @@ int run_train(const std::vector<std::string>& argv) {
   opt.aspect_sectors = static_cast<int>(args.get_int("--aspect-sectors", 1, 360).value_or(1));
   opt.group_subspaces = args.has("--group-subspaces");
   opt.skip_degenerate = args.has("--skip-bad-chips");
-  if (const auto m = args.get("--mine-classes")) opt.mine_classes = split_list(*m);
+  if (const auto m = args.get("--mine-classes")) opt.mine_classes = split_comma_list(*m);
 
   const auto t0 = std::chrono::steady_clock::now();
   const atr::ChipFolder folder = atr::read_chip_folder(args.positionals()[0]);

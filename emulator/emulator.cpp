@@ -395,6 +395,7 @@ void Emulator::Impl::publish_ping(const PingSlot& slot, std::int64_t k) {
     ++stats.udp_datagrams;
     stats.udp_bytes += packet.size();
   }
+  if (hooks.on_ping) hooks.on_ping(packet);
   if (pacer.paced()) {
     const std::int64_t sent = clock.now_ns();
     const std::int64_t lateness = sent - pacer.wall_of(slot.truth.t + send_delay);

@@ -40,6 +40,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -84,6 +85,9 @@ struct EmulatorHooks {
   std::function<void(const RunStats&)> on_stats;
   // Polled by the publisher; true stops the run (SIGINT/SIGTERM).
   std::function<bool()> stop_requested;
+  // Every ping as sent: the bytes of its XTF packet (its UDP datagram), on the publisher thread,
+  // for in-process consumers (`run --classify`). Must return quickly (copy and hand off).
+  std::function<void(std::span<const std::uint8_t>)> on_ping;
 };
 
 // Largest samples per side for which a two-channel ping of `bytes_per_sample` fits one UDP

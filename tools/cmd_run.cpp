@@ -10,11 +10,13 @@
 #include <thread>
 #include <vector>
 
+#include "drivers/xtf/xtf_codec.h"
 #include "emulator/emulator.h"
 #include "emulator/pacer.h"
 #include "emulator/run_stats.h"
 #include "tools/args.h"
 #include "tools/commands.h"
+#include "tools/onboard_output.h"
 #include "tools/scenario_source.h"
 
 namespace sonarloop::tools {
@@ -116,7 +118,9 @@ int run_run(const std::vector<std::string>& argv) {
                          {"--stats-every"},
                          {"--pose-from"},
                          {"--stale-after"},
-                         {"--epoch"}});
+                         {"--epoch"},
+                         {"--classify"},
+                         {"--contacts"}});
   if (args.positionals().size() > 1) throw UsageError("expected at most one SCENARIO.yaml");
   const bool quiet = args.has("--quiet");
 
@@ -152,6 +156,10 @@ int run_run(const std::vector<std::string>& argv) {
   }
   o.stats_interval_s = quiet ? 0.0 : args.get_double("--stats-every", 0.0, 3600.0).value_or(5.0);
   const auto stats_json = args.get("--stats-json");
+  const auto classify = args.get("--classify");
+  if (args.has("--contacts") && !classify) throw UsageError("--contacts needs --classify MODEL");
+  // the model first: a bad file fails before the scene is built
+  std::optional<atr::Model> model = load_model_if(classify);
 
   config::Scenario scenario = load_scenario_or_default(
       args.positionals().empty() ? std::nullopt : std::optional(args.positionals()[0]));
@@ -169,12 +177,27 @@ int run_run(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "%s\n", line);
   };
   hooks.stop_requested = [] { return g_stop_signal.load(std::memory_order_relaxed) != 0; };
+  std::unique_ptr<InProcessOnboard> onboard;  // --classify: fed from on_ping
+  if (model) {
+    hooks.on_ping = [&onboard](std::span<const std::uint8_t> p) {
+      if (onboard) onboard->on_ping(p);
+    };
+  }
 
   if (!quiet) {
     std::fprintf(stderr, "sonarloop run: scenario '%s' (seed %llu), preparing the scene ...\n",
                  scenario.scene.name.c_str(), static_cast<unsigned long long>(scenario.scene.seed));
   }
   emulator::Emulator emu(scenario, o, clock, hooks);
+  if (model) {
+    onboard = std::make_unique<InProcessOnboard>(std::move(*model), args.get("--contacts"),
+                                                 xtf::encode_file_header(emu.file_header()),
+                                                 emu.packet_bytes(), o.rate.max);
+    if (!quiet) {
+      std::fprintf(stderr, "onboard: classifying with %s, contacts to %s\n", classify->c_str(),
+                   onboard->contacts_destination().c_str());
+    }
+  }
   if (!quiet) {
     const auto& s = emu.sonar();
     std::fprintf(stderr,
@@ -203,6 +226,7 @@ int run_run(const std::vector<std::string>& argv) {
   print_final(stats, sig == SIGINT    ? "stopped by SIGINT"
                      : sig == SIGTERM ? "stopped by SIGTERM"
                                       : "done");
+  if (onboard) print_onboard_stats("onboard", onboard->finish(), &onboard->queue());
   if (stats_json) {
     std::ofstream out(*stats_json);
     out << emulator::stats_json(stats) << '\n';
@@ -246,6 +270,10 @@ options:
   --stale-after S        age beyond which the external pose is stale (default 2 s)
   --epoch UNIX_S         UTC of the mission start, seconds since 1970 (default: now; with
                          --rate max 1767225600 = 2026-01-01T00:00:00Z, for reproducible files)
+  --classify MODEL       run the onboard consumer in-process on the pings (as `sonarloop
+                         onboard` does on the UDP stream): detect, classify with MODEL (of
+                         `sonarloop train`), one JSON contact report per object
+  --contacts FILE        write the contact reports there (default stderr)
 
 examples:
   sonarloop run --duration 30 --udp 127.0.0.1:5600
@@ -253,6 +281,7 @@ examples:
   sonarloop run config/default.yaml --rate max --record out/max --stats-json out/max.json
   sonarloop run --can vcan0 --can log:nav.log --rate 2
   sonarloop run --pose-from udp:127.0.0.1:5700 --udp 127.0.0.1:5600 --stale-after 1
+  sonarloop run --rate max --classify out/atr.slpca --contacts out/contacts.jsonl
 )",
     run_run, 10};
 SONARLOOP_REGISTER_COMMAND(kRunCommand);

@@ -1,0 +1,190 @@
+#include "atr/onboard_pipeline.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "sim/targets/target_type.h"
+
+namespace sonarloop::atr {
+namespace {
+
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+
+// Height of a class's target type (sim/targets), or nullopt for a name that is not one.
+std::optional<double> class_height_m(const std::string& name) {
+  if (const auto t = targets::find_target_type(name))
+    return targets::target_type_info(*t).size_m.z();
+  return std::nullopt;
+}
+
+}  // namespace
+
+OnboardPipeline::OnboardPipeline(std::optional<Model> model, const OnboardOptions& options,
+                                 ContactSink sink)
+    : options_(options),
+      sink_(std::move(sink)),
+      receiver_(options.receiver,
+                [this](const xtf::XtfFileHeader& h, const xtf::XtfPing& p) { on_ping(h, p); }),
+      waterfall_(options.waterfall_pings),
+      detector_(options.detector) {
+  if (!(options.position_window_m > 0.0)) {
+    throw std::invalid_argument("position window must be > 0 m");
+  }
+  if (model) {
+    const ChipSpec spec = highlight_chip_spec(model->chip_width, model->chip_height);
+    classifier_ = std::make_unique<Classifier>(std::move(*model));
+    aligned_ = std::make_unique<AlignedClassifier>(*classifier_, options.search);
+    cutter_ = std::make_unique<ChipCutter>(spec, aligned_->margin_rows(), aligned_->margin_cols());
+  }
+}
+
+OnboardPipeline::~OnboardPipeline() = default;
+
+void OnboardPipeline::feed(std::span<const std::uint8_t> datagram) {
+  receiver_.feed(datagram);
+}
+
+void OnboardPipeline::flush() {
+  receiver_.flush();
+}
+
+void OnboardPipeline::finish() {
+  receiver_.flush();
+  for (const Detection& d : detector_.finish(waterfall_))
+    report(d);
+}
+
+OnboardStats OnboardPipeline::stats() const {
+  OnboardStats s = stats_;
+  s.receiver = receiver_.stats();
+  s.waterfall_unusable = waterfall_.unusable();
+  s.waterfall_resets = waterfall_.resets();
+  s.detector = detector_.stats();
+  return s;
+}
+
+void OnboardPipeline::on_ping(const xtf::XtfFileHeader& header, const xtf::XtfPing& ping) {
+  const AddResult added = waterfall_.add(header, ping);
+  if (added == AddResult::kUnusable) return;
+  if (added == AddResult::kReset) detector_.reset();
+  for (const Detection& d : detector_.process(waterfall_))
+    report(d);
+}
+
+void OnboardPipeline::locate(const Detection& d, const ChipCentre& centre, double object_height_m,
+                             Contact& c) {
+  const Waterfall& w = waterfall_;
+  // the ping nearest the centre: time, altitude
+  std::uint64_t nearest = d.centre_seq;
+  double best = std::numeric_limits<double>::infinity();
+  double north = 0.0, east = 0.0;
+  int n = 0;
+  for (std::uint64_t s = w.oldest_seq(); s <= w.newest_seq(); ++s) {
+    const PingRecord& r = w.record(s);
+    const double off = footprint_along_m(r) - centre.along_m;
+    if (std::abs(off) < best) {
+      best = std::abs(off);
+      nearest = s;
+    }
+  }
+  const PingRecord& rc = w.record(nearest);
+  const double a = std::isfinite(rc.altitude_m) ? rc.altitude_m : 0.0;
+  const double depth = std::max(0.0, a - 0.5 * object_height_m);
+  const double ground = std::sqrt(std::max(0.0, centre.slant_m * centre.slant_m - depth * depth));
+  const double side = centre.side == 1 ? 1.0 : -1.0;
+  // each nearby ping's view of the object, averaged
+  for (std::uint64_t s = w.oldest_seq(); s <= w.newest_seq(); ++s) {
+    const PingRecord& r = w.record(s);
+    if (std::abs(footprint_along_m(r) - centre.along_m) > options_.position_window_m) continue;
+    const double psi = r.heading_deg * kDegToRad;
+    const double ahead = centre.along_m - r.along_m;  // includes the pitch offset
+    north += r.north_m + ahead * std::cos(psi) - side * ground * std::sin(psi);
+    east += r.east_m + ahead * std::sin(psi) + side * ground * std::cos(psi);
+    ++n;
+  }
+  if (n == 0) {
+    const double psi = rc.heading_deg * kDegToRad;
+    const double ahead = centre.along_m - rc.along_m;
+    north = rc.north_m + ahead * std::cos(psi) - side * ground * std::sin(psi);
+    east = rc.east_m + ahead * std::sin(psi) + side * ground * std::cos(psi);
+    n = 1;
+  }
+  north /= n;
+  east /= n;
+  c.time_utc_ns = rc.time_utc_ns;
+  c.ping_number = rc.ping_number;
+  c.slant_range_m = centre.slant_m;
+  c.ground_range_m = ground;
+  if (w.geodetic()) {
+    const GeoPoint g = w.to_geodetic(north, east);
+    c.latitude_deg = g.latitude_deg;
+    c.longitude_deg = g.longitude_deg;
+  }
+  const Vec2 ne = w.stream_metres(north, east);
+  c.north_m = ne.x();
+  c.east_m = ne.y();
+}
+
+void OnboardPipeline::report(const Detection& d) {
+  Contact c;
+  c.id = ++stats_.contacts;
+  c.side = d.side;
+  c.pings = d.pings;
+  c.along_extent_m = d.along_extent_m;
+  c.height_m = d.height_m;
+  c.shadow_area_m2 = d.shadow_area_m2;
+  c.highlight_db = d.highlight_db;
+  ChipCentre centre{d.side, d.along_m, d.slant_m};
+  double height = d.height_m;
+
+  if (!classifier_) {
+    c.status = "no_model";
+    ++stats_.unclassified;
+  } else {
+    const auto t0 = std::chrono::steady_clock::now();
+    const CutStatus cut = cutter_->cut(waterfall_, centre);
+    if (cut != CutStatus::kOk) {
+      c.status = cut_status_name(cut);
+      ++stats_.unclassified;
+    } else {
+      const AlignedClassification& a = aligned_->classify(*cutter_);
+      stats_.windows += static_cast<std::uint64_t>(a.windows);
+      c.windows = a.windows;
+      if (a.result.class_index < 0) {
+        c.status = chip_status_name(a.check.status);
+        ++stats_.unclassified;
+      } else {
+        ++stats_.classified;
+        const Model& m = classifier_->model();
+        const Classification& r = a.result;
+        const ClassModel& cls = m.classes[static_cast<std::size_t>(r.class_index)];
+        c.class_name = cls.name;
+        c.mine_like = r.mine_like;
+        c.distance = r.distance;
+        if (r.runner_up >= 0) c.runner_up = m.classes[static_cast<std::size_t>(r.runner_up)].name;
+        c.runner_up_distance = r.runner_up_distance;
+        for (std::size_t i = 0; i < m.classes.size(); ++i)
+          c.scores.emplace_back(m.classes[i].name, r.class_distance[i]);
+        c.mine_distance = r.mine_distance;
+        c.non_mine_distance = r.non_mine_distance;
+        const Subspace& sub = cls.subspaces[static_cast<std::size_t>(r.subspace_index)];
+        c.aspect_min_deg = sub.aspect_min_deg;
+        c.aspect_max_deg = sub.aspect_max_deg;
+        c.shift_rows = a.dr;
+        c.shift_cols = a.dc;
+        centre = cutter_->shifted(centre, a.dr, a.dc);
+        if (const auto h = class_height_m(cls.name)) height = *h;
+      }
+    }
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    stats_.classify_total_s += s;
+    stats_.classify_max_s = std::max(stats_.classify_max_s, s);
+  }
+  locate(d, centre, height, c);
+  if (sink_) sink_(c);
+}
+
+}  // namespace sonarloop::atr

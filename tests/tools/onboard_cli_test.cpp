@@ -1,0 +1,239 @@
+// End-to-end onboard recognition, as a user runs it: a 5 cm model made with `sonarloop dataset`
+// and `sonarloop train`, then the emulator on the default scenario with the onboard consumer
+// in-process (`run --classify`), over UDP on 127.0.0.1 (`onboard --listen`), and on the
+// recording (`onboard --xtf`). Every one of the four placed targets must be reported within 1 m
+// of its true position with its class; at most kMaxFalseContacts other contacts.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "config/loader/scenario_loader.h"
+#include "sim/core/geodesy.h"
+#include "sim/targets/target_type.h"
+#include "tests/support/temp_dir.h"
+
+using namespace sonarloop;
+
+namespace {
+
+const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
+const std::string kScenario = std::string(SONARLOOP_SOURCE_DIR) + "/config/default.yaml";
+// Contacts farther than this from their target do not count as finding it (the brief's 1 m).
+constexpr double kMaxPositionError_m = 1.0;
+// Other contacts allowed: the default scenario's seabed has large clutter rocks (up to 0.8 m,
+// 0.4 m tall) and relief that look like small objects; 3 are reported with this model.
+constexpr int kMaxFalseContacts = 5;
+// The training set: 450 chips per class (1800 chips, about 30-45 s on 2 cores) at 5 cm on the
+// scenario's own seabed, 8 aspect sectors. Measured on independent training sets (dataset seeds
+// 201-205): 20 of 20 targets identified; with 300 per class 38 of 40 (seeds 101-110).
+const std::string kDatasetArgs =
+    " --count 450 --resolution-cm 5 --seed 1 --threads 2 --seabed " + kScenario;
+const std::string kTrainArgs = " --aspect-sectors 8 --p 10";
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+int run(const testing::TempDir& dir, const std::string& args, const std::string& log) {
+  return testing::run_command(kBinary + " " + args + " > " + dir.file(log + ".out") + " 2> " +
+                              dir.file(log + ".err"));
+}
+
+// The value of "key": in a flat JSON line (numbers, strings, true/false/null).
+std::optional<std::string> json_value(const std::string& line, const std::string& key) {
+  const std::string k = "\"" + key + "\":";
+  const auto at = line.find(k);
+  if (at == std::string::npos) return std::nullopt;
+  std::size_t b = at + k.size();
+  if (line[b] == '"') {
+    const auto e = line.find('"', b + 1);
+    return line.substr(b + 1, e - b - 1);
+  }
+  const auto e = line.find_first_of(",}", b);
+  return line.substr(b, e - b);
+}
+
+struct Contact {
+  Vec2 ne_m = Vec2::Zero();  // from latitude/longitude, in the scenario's plane
+  std::string cls;
+  bool mine_like = false;
+};
+
+std::vector<Contact> read_contacts(const std::string& path, const LocalTangentPlane& plane) {
+  std::vector<Contact> out;
+  std::istringstream in(slurp(path));
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto lat = json_value(line, "latitude_deg");
+    const auto lon = json_value(line, "longitude_deg");
+    REQUIRE(lat);
+    REQUIRE(lon);
+    Contact c;
+    c.ne_m = plane.to_local(GeoPoint{std::stod(*lat), std::stod(*lon)});
+    c.cls = json_value(line, "class").value_or("");
+    c.mine_like = json_value(line, "mine_like").value_or("") == "true";
+    out.push_back(c);
+  }
+  return out;
+}
+
+// Checks the contacts against the scenario's targets; returns the number of false contacts.
+int check_against_truth(const std::vector<Contact>& contacts, const config::Scenario& sc) {
+  std::vector<bool> matched(contacts.size(), false);
+  for (const scene::TargetDesc& t : sc.scene.targets) {
+    const std::string key(targets::target_type_info(t.type).key);
+    int found = 0;
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+      const double err = (contacts[i].ne_m - t.position_m).norm();
+      if (err > kMaxPositionError_m) continue;
+      matched[i] = true;
+      ++found;
+      INFO(key << " at (" << t.position_m.x() << ", " << t.position_m.y() << "): contact at ("
+               << contacts[i].ne_m.x() << ", " << contacts[i].ne_m.y() << "), " << err
+               << " m off, class " << contacts[i].cls);
+      CHECK(contacts[i].cls == key);
+      CHECK(contacts[i].mine_like);
+    }
+    INFO(key << " at (" << t.position_m.x() << ", " << t.position_m.y() << ")");
+    CHECK(found == 1);  // one contact per object
+  }
+  return static_cast<int>(std::count(matched.begin(), matched.end(), false));
+}
+
+// Starts `sonarloop onboard --listen 127.0.0.1:0 ...` in the background; returns its pid and
+// the port it printed.
+std::pair<pid_t, int> start_listener(const testing::TempDir& dir, const std::string& model) {
+  const std::string err = dir.file("listen.err");
+  const pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    std::freopen("/dev/null", "w", stdout);
+    std::freopen(err.c_str(), "w", stderr);
+    execl(kBinary.c_str(), kBinary.c_str(), "onboard", "--listen", "127.0.0.1:0", "--model",
+          model.c_str(), "--contacts", dir.file("udp.jsonl").c_str(), "--idle-exit", "3",
+          "--stats-json", dir.file("udp_stats.json").c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  const std::string marker = "listening on 127.0.0.1:";
+  for (int k = 0; k < 500; ++k) {
+    const std::string text = slurp(err);
+    const auto at = text.find(marker);
+    if (at != std::string::npos && text.find(' ', at + marker.size()) != std::string::npos) {
+      return {pid, std::stoi(text.substr(at + marker.size()))};
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(pid, SIGTERM);
+  waitpid(pid, nullptr, 0);
+  FAIL("onboard --listen did not start: " << slurp(err));
+  return {-1, 0};
+}
+
+long long stat_of(const std::string& json, const std::string& key) {
+  return std::stoll(json_value(json, key).value_or("-1"));
+}
+
+}  // namespace
+
+TEST_CASE("onboard cli: the default scenario's four targets, in-process, over UDP, from a file") {
+  testing::TempDir dir("onboard-cli");
+  const config::Scenario sc = config::load_scenario(kScenario);
+  const LocalTangentPlane plane(
+      GeoPoint{sc.scene.origin.latitude_deg, sc.scene.origin.longitude_deg});
+  REQUIRE(sc.scene.targets.size() == 4);
+
+  // the model: 5 cm highlight chips of the four classes
+  const std::string chips = dir.file("chips");
+  const std::string model = dir.file("atr.slpca");
+  REQUIRE(run(dir, "dataset --out " + chips + kDatasetArgs, "dataset") == 0);
+  REQUIRE(run(dir, "train " + chips + " --out " + model + kTrainArgs, "train") == 0);
+
+  // 1. in-process: run --classify, as fast as possible (lossless), recording the pings
+  const std::string inproc = dir.file("inproc.jsonl");
+  REQUIRE(run(dir,
+              "run " + kScenario + " --rate max --threads 2 --quiet --classify " + model +
+                  " --contacts " + inproc + " --record " + dir.file("rec") + " --stats-json " +
+                  dir.file("run_stats.json"),
+              "run") == 0);
+  const std::string run_err = slurp(dir.file("run.err"));
+  INFO(run_err);
+  CHECK_THAT(run_err, Catch::Contains("onboard: ") && Catch::Contains("lost 0") &&
+                          Catch::Contains("ms per chip"));
+  const std::vector<Contact> c1 = read_contacts(inproc, plane);
+  const int false1 = check_against_truth(c1, sc);
+  WARN("run --classify: " << c1.size() << " contacts, " << false1 << " false");
+  CHECK(false1 <= kMaxFalseContacts);
+
+  // 2. the recording: the same pings give the same contacts, byte for byte
+  const std::string from_file = dir.file("file.jsonl");
+  REQUIRE(run(dir,
+              "onboard --xtf " + dir.file("rec") + "/pings.xtf --model " + model + " --contacts " +
+                  from_file,
+              "file") == 0);
+  CHECK(slurp(from_file) == slurp(inproc));
+
+  // 3. over UDP on 127.0.0.1: onboard --listen, the emulator at 10x real time (with --rate
+  // max's epoch, so that the ping times, and so the contacts, can be compared)
+  const auto [pid, port] = start_listener(dir, model);
+  REQUIRE(run(dir,
+              "run " + kScenario +
+                  " --rate 10 --threads 2 --quiet --udp 127.0.0.1:" + std::to_string(port) +
+                  " --epoch 1767225600 --stats-json " + dir.file("udp_run.json"),
+              "udp_run") == 0);
+  int status = 0;
+  bool exited = false;
+  for (int k = 0; k < 600 && !exited; ++k) {  // --idle-exit 3: it ends on its own
+    exited = waitpid(pid, &status, WNOHANG) == pid;
+    if (!exited) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  if (!exited) {
+    kill(pid, SIGTERM);
+    waitpid(pid, &status, 0);
+  }
+  INFO(slurp(dir.file("listen.err")));
+  REQUIRE(exited);
+  REQUIRE(WIFEXITED(status));
+  REQUIRE(WEXITSTATUS(status) == 0);
+  const std::string udp_stats = slurp(dir.file("udp_stats.json"));
+  const std::string run_stats = slurp(dir.file("udp_run.json"));
+  const long long sent = stat_of(run_stats, "sent");  // pings.sent (pings.due: with dropped ones)
+  const long long due = stat_of(run_stats, "due");
+  const long long pings = stat_of(udp_stats, "pings");
+  const long long lost = stat_of(udp_stats, "lost");
+  INFO(udp_stats);
+  CHECK(stat_of(udp_stats, "malformed") == 0);
+  CHECK(pings <= sent);
+  CHECK(pings + lost <= due);  // gaps: lost on the way, or never sent (deadline missed)
+  REQUIRE(pings >= sent * 95 / 100);
+  const std::vector<Contact> c2 = read_contacts(dir.file("udp.jsonl"), plane);
+  const int false2 = check_against_truth(c2, sc);
+  CHECK(false2 <= kMaxFalseContacts);
+  // nothing lost on the way: exactly the in-process contacts
+  if (pings == sent) CHECK(slurp(dir.file("udp.jsonl")) == slurp(inproc));
+}
+
+TEST_CASE("onboard cli: usage errors") {
+  testing::TempDir dir("onboard-cli-usage");
+  CHECK(run(dir, "onboard", "u") == 2);
+  CHECK(run(dir, "onboard --listen 127.0.0.1:0 --xtf x.xtf", "u") == 2);
+  CHECK(run(dir, "onboard --xtf x.xtf --idle-exit 2", "u") == 2);
+  CHECK(run(dir, "onboard --xtf " + dir.file("missing.xtf"), "u") == 1);
+  CHECK(run(dir, "onboard --listen 127.0.0.1:0 --model " + dir.file("missing.slpca"), "u") == 1);
+  CHECK_THAT(slurp(dir.file("u.err")), Catch::Contains("missing.slpca"));
+  CHECK(run(dir, "run --contacts x.jsonl", "u") == 2);
+  CHECK(run(dir, "onboard --help", "u") == 0);
+  CHECK_THAT(slurp(dir.file("u.out")), Catch::Contains("--listen") && Catch::Contains("examples"));
+}

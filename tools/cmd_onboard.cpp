@@ -1,0 +1,242 @@
+// sonarloop onboard: the onboard consumer (atr/onboard_pipeline.h) — receives the emulator's
+// sonar stream (UDP, or an .xtf file), detects objects, classifies them with a trained PCA model
+// and writes a contact report per object.
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "atr/onboard_pipeline.h"
+#include "atr/packet_queue.h"
+#include "drivers/net/udp_receiver.h"
+#include "drivers/xtf/xtf_file.h"
+#include "tools/args.h"
+#include "tools/cli_helpers.h"
+#include "tools/commands.h"
+#include "tools/onboard_output.h"
+
+namespace sonarloop::tools {
+namespace {
+
+// Largest UDP payload (IPv4).
+constexpr std::size_t kMaxDatagramBytes = 65536;
+// Datagrams queued between the socket thread and the pipeline: 2048 x 64 KiB of address space,
+// of which only the pages used are touched (4.5 KB per default ping: 9 MB, 2 s at --rate 10).
+constexpr std::size_t kQueueSlots = 2048;
+// Receive buffer asked of the kernel (capped at net.core.rmem_max).
+constexpr int kReceiveBufferBytes = 8 << 20;
+// The socket thread's receive timeout: bounds how long a stop request waits.
+constexpr int kPollMs = 50;
+// A quiet stream this long hands over the pings waiting in the reorder buffer.
+constexpr double kFlushAfterS = 0.5;
+
+double seconds(std::chrono::steady_clock::duration d) {
+  return std::chrono::duration<double>(d).count();
+}
+
+// Reads an XTF file as the stream it was recorded from: its file header, then every packet.
+void feed_file(const std::string& path, atr::OnboardPipeline& pipeline, bool quiet) {
+  xtf::XtfReader reader(path);
+  pipeline.feed(reader.file_header_bytes());
+  xtf::XtfRawPacket packet;
+  try {
+    while (!stop_requested() && reader.next_raw(packet))
+      pipeline.feed(packet.bytes);
+  } catch (const xtf::XtfFormatError& e) {
+    // what was read is still processed
+    std::fprintf(stderr, "sonarloop onboard: warning: %s; stopping there\n", e.what());
+  }
+  if (!quiet) {
+    std::fprintf(stderr, "sonarloop onboard: read %llu packets from %s\n",
+                 static_cast<unsigned long long>(reader.stats().packets), path.c_str());
+  }
+}
+
+struct ListenOptions {
+  net::HostPort address;
+  std::optional<double> duration_s;
+  std::optional<double> idle_exit_s;
+  bool quiet = false;
+};
+
+// Receives datagrams on a socket thread into a queue, and feeds the pipeline from it here.
+void listen(const ListenOptions& o, atr::OnboardPipeline& pipeline, atr::PacketQueue& queue) {
+  net::UdpReceiver rx(o.address, kReceiveBufferBytes);
+  std::fprintf(stderr, "sonarloop onboard: listening on %s (receive buffer %d bytes)\n",
+               net::to_string(rx.bound_address()).c_str(), rx.receive_buffer_bytes());
+  std::atomic<bool> done{false};
+  std::string socket_error;
+  std::thread reader([&] {
+    std::vector<std::uint8_t> buf(kMaxDatagramBytes);
+    try {
+      while (!done.load() && !stop_requested()) {
+        const auto d = rx.receive(buf, kPollMs);
+        if (!d) continue;
+        queue.push(std::span<const std::uint8_t>(buf.data(), d->size), false);
+      }
+    } catch (const std::exception& e) {
+      socket_error = e.what();
+    }
+    queue.close();
+  });
+
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  auto last = start;
+  bool got_any = false, flushed = true;
+  for (;;) {
+    const bool got = queue.pop([&](std::span<const std::uint8_t> p) { pipeline.feed(p); }, kPollMs);
+    const auto now = Clock::now();
+    if (got) {
+      last = now;
+      got_any = true;
+      flushed = false;
+      continue;
+    }
+    if (queue.closed() && queue.size() == 0) break;  // socket thread ended (stop or error)
+    if (!flushed && seconds(now - last) >= kFlushAfterS) {
+      pipeline.flush();
+      flushed = true;
+    }
+    if (o.duration_s && seconds(now - start) >= *o.duration_s) break;
+    if (o.idle_exit_s && got_any && seconds(now - last) >= *o.idle_exit_s) break;
+    if (stop_requested()) break;
+  }
+  done.store(true);
+  reader.join();
+  // what the socket thread queued before it stopped
+  while (queue.pop([&](std::span<const std::uint8_t> p) { pipeline.feed(p); }, 0)) {
+  }
+  if (!socket_error.empty()) throw std::runtime_error(socket_error);
+}
+
+int run_onboard(const std::vector<std::string>& argv) {
+  const Args args(argv, {{"--listen"},
+                         {"--xtf"},
+                         {"--model"},
+                         {"--contacts"},
+                         {"--duration"},
+                         {"--idle-exit"},
+                         {"--reorder-window"},
+                         {"--search-rows"},
+                         {"--search-cols"},
+                         {"--stats-json"},
+                         {"--quiet", false}});
+  if (!args.positionals().empty()) {
+    throw UsageError("unexpected argument '" + args.positionals()[0] + "'");
+  }
+  const auto listen_at = args.get("--listen");
+  const auto xtf_path = args.get("--xtf");
+  if (listen_at.has_value() == xtf_path.has_value()) {
+    throw UsageError("give exactly one input: --listen HOST:PORT or --xtf FILE.xtf");
+  }
+  const bool quiet = args.has("--quiet");
+  ListenOptions lo;
+  if (listen_at) {
+    try {
+      lo.address = net::parse_host_port(*listen_at);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--listen: ") + e.what());
+    }
+  } else if (args.has("--duration") || args.has("--idle-exit")) {
+    throw UsageError("--duration and --idle-exit apply to --listen only");
+  }
+  lo.duration_s = args.get_double("--duration", 1e-3, 1e9);
+  lo.idle_exit_s = args.get_double("--idle-exit", 1e-3, 1e9);
+  lo.quiet = quiet;
+  atr::OnboardOptions options;
+  options.receiver.reorder_window = static_cast<int>(
+      args.get_int("--reorder-window", 1, 4096).value_or(atr::kDefaultReorderWindow));
+  options.search.rows =
+      static_cast<int>(args.get_int("--search-rows", 0, 100).value_or(options.search.rows));
+  options.search.cols =
+      static_cast<int>(args.get_int("--search-cols", 0, 100).value_or(options.search.cols));
+  const auto stats_json = args.get("--stats-json");
+
+  std::optional<atr::Model> model = load_model_if(args.get("--model"));
+  if (!quiet) {
+    if (model) {
+      std::fprintf(stderr,
+                   "sonarloop onboard: model %s: %zu classes, %d x %d chips (%g cm pixels), %d "
+                   "aspect sector%s\n",
+                   args.get("--model")->c_str(), model->classes.size(), model->chip_width,
+                   model->chip_height, 100.0 * 3.0 / model->chip_width, model->aspect_sectors,
+                   model->aspect_sectors == 1 ? "" : "s");
+    } else {
+      std::fprintf(stderr, "sonarloop onboard: no --model: objects are detected, not classified\n");
+    }
+  }
+  ContactWriter contacts(args.get("--contacts"), stdout);
+  atr::OnboardPipeline pipeline(std::move(model), options,
+                                [&contacts](const atr::Contact& c) { contacts.write(c); });
+  install_stop_flag();
+  std::optional<atr::PacketQueue> queue;
+  if (xtf_path) {
+    feed_file(*xtf_path, pipeline, quiet);
+  } else {
+    queue.emplace(kQueueSlots, kMaxDatagramBytes);
+    listen(lo, pipeline, *queue);
+  }
+  pipeline.finish();
+  const atr::OnboardStats s = pipeline.stats();
+  print_onboard_stats(
+      stop_requested() ? "sonarloop onboard: stopped (SIGINT/SIGTERM)" : "sonarloop onboard: done",
+      s, queue ? &*queue : nullptr);
+  if (stats_json) {
+    std::ofstream out(*stats_json);
+    out << onboard_stats_json(s, queue ? &*queue : nullptr) << '\n';
+    if (!out) throw std::runtime_error("--stats-json " + *stats_json + ": cannot write");
+  }
+  return 0;
+}
+
+}  // namespace
+
+const Command kOnboardCommand{
+    "onboard", "the onboard consumer: receive the sonar stream, detect, classify, report contacts",
+    R"(usage: sonarloop onboard --listen HOST:PORT | --xtf FILE.xtf [--model MODEL] [options]
+
+Receives the sonar stream of `sonarloop run --udp` (the XTF file header and one XTF ping per
+UDP datagram), or reads a recorded .xtf file, and runs the onboard chain on it:
+  receive    decode, put pings back in order (reorder window), count lost, late, duplicated,
+             reordered and malformed datagrams
+  waterfall  levels in dB re full scale with each ping's navigation
+  detect     a strong highlight followed by an acoustic shadow deep below the local seabed
+             level, tall enough for a mine-like object, one contact per object
+  classify   chips cut as `sonarloop dataset` cuts them (3 m x 3 m, pixels of the model's
+             resolution, one ping per row resampled along track with the navigation and
+             pitch), classified by the PCA model of `sonarloop train` at the best alignment
+  report     one JSON line per contact: time, ping, latitude/longitude of the object, class,
+             mine / non-mine, the distance to every class
+Contacts go to stdout (or --contacts FILE) as they are found; statistics go to stderr at the
+end. Without --model the objects are reported unclassified. With --listen, Ctrl-C stops
+cleanly (objects still open are reported).
+
+options:
+  --listen HOST:PORT     receive UDP there (port 0: any free port; the port is printed)
+  --xtf FILE.xtf         read a recorded stream instead (e.g. run --record DIR: DIR/pings.xtf)
+  --model MODEL          a model of `sonarloop train` (highlight chips, e.g. 60 x 60 at 5 cm)
+  --contacts FILE        write the contacts there (JSON Lines; default stdout)
+  --duration S           stop after S seconds of listening
+  --idle-exit S          stop when no datagram has come for S seconds (after the first)
+  --reorder-window N     pings held to put late datagrams back in order (default 32)
+  --search-rows N        alignment search: chip windows tried up to N pixels along track
+                         either side of the detector's centre (default 6)
+  --search-cols N        the same in range (default 10)
+  --stats-json FILE      write the final statistics as JSON
+  --quiet                no start-up lines (warnings and the final statistics still print)
+
+examples:
+  sonarloop dataset --out out/chips --count 400 && sonarloop train out/chips --out out/atr.slpca
+  sonarloop onboard --listen 127.0.0.1:5600 --model out/atr.slpca --contacts out/contacts.jsonl &
+  sonarloop run --udp 127.0.0.1:5600 --rate 4
+  sonarloop onboard --xtf out/run/pings.xtf --model out/atr.slpca
+)",
+    run_onboard, 15};
+SONARLOOP_REGISTER_COMMAND(kOnboardCommand);
+
+}  // namespace sonarloop::tools

@@ -1,0 +1,79 @@
+#pragma once
+// What `sonarloop onboard` and `sonarloop run --classify` share: the contacts file (JSON Lines,
+// atr/contact.h) and the end-of-run statistics of the onboard pipeline.
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "atr/contact.h"
+#include "atr/onboard_pipeline.h"
+#include "atr/packet_queue.h"
+#include "atr/subspace_classifier.h"
+
+namespace sonarloop::tools {
+
+// Contact reports, one JSON line each, flushed line by line (a reader sees them live). To a file
+// (created or truncated), or to an already open stream (stdout, stderr).
+class ContactWriter {
+ public:
+  // Throws std::runtime_error naming the file if it cannot be created.
+  explicit ContactWriter(const std::optional<std::string>& path, std::FILE* fallback);
+  ~ContactWriter();
+  ContactWriter(const ContactWriter&) = delete;
+  ContactWriter& operator=(const ContactWriter&) = delete;
+
+  void write(const atr::Contact& c);
+  std::string describe() const;  // the file name, or "stdout" / "stderr"
+
+ private:
+  std::FILE* f_ = nullptr;
+  bool owned_ = false;
+  std::string name_;
+};
+
+// Loads a model file, or nullopt when no path is given.
+std::optional<atr::Model> load_model_if(const std::optional<std::string>& path);
+
+// The end-of-run statistics on stderr, a few lines (`who` prefixes the first).
+void print_onboard_stats(const char* who, const atr::OnboardStats& s,
+                         const atr::PacketQueue* queue);
+
+// The statistics as one JSON object.
+std::string onboard_stats_json(const atr::OnboardStats& s, const atr::PacketQueue* queue);
+
+// `run --classify`: the onboard pipeline on a thread of its own, fed with the emulator's pings
+// (EmulatorHooks::on_ping) through a queue, contacts to a file or stderr. Lossless: with
+// --rate max the emulator waits for a free queue slot (the output then depends only on the
+// scenario); paced, a full queue drops the ping (counted) rather than delay the emulator.
+class InProcessOnboard {
+ public:
+  // Starts the consumer thread; feeds `file_header` (the emulator's XTF file header) first.
+  InProcessOnboard(atr::Model model, const std::optional<std::string>& contacts_path,
+                   std::span<const std::uint8_t> file_header, std::size_t packet_bytes,
+                   bool lossless);
+  ~InProcessOnboard();
+  InProcessOnboard(const InProcessOnboard&) = delete;
+  InProcessOnboard& operator=(const InProcessOnboard&) = delete;
+
+  // The hook: copies the packet into the queue.
+  void on_ping(std::span<const std::uint8_t> packet) { queue_.push(packet, lossless_); }
+  // Drains the queue, ends the thread, decides the objects still open; returns the statistics.
+  atr::OnboardStats finish();
+  const atr::PacketQueue& queue() const { return queue_; }
+  std::string contacts_destination() const { return contacts_.describe(); }
+
+ private:
+  ContactWriter contacts_;
+  atr::OnboardPipeline pipeline_;
+  atr::PacketQueue queue_;
+  bool lossless_;
+  std::thread thread_;
+  std::string error_;
+};
+
+}  // namespace sonarloop::tools

@@ -8,11 +8,11 @@
 namespace sonarloop::tools {
 namespace {
 
-std::atomic<bool> g_stop_flag{false};
-static_assert(std::atomic<bool>::is_always_lock_free);
+std::atomic<int> g_stop_signal{0};  // the signal that asked to stop, 0: none
+static_assert(std::atomic<int>::is_always_lock_free, "set from a signal handler");
 
-void on_stop_flag_signal(int) {
-  g_stop_flag.store(true);
+void on_stop_flag_signal(int sig) {
+  g_stop_signal.store(sig);
 }
 
 }  // namespace
@@ -30,7 +30,7 @@ std::vector<std::string> split_comma_list(const std::string& text) {
 }
 
 void install_stop_flag() {
-  g_stop_flag.store(false);
+  g_stop_signal.store(0);
   struct sigaction action {};
   action.sa_handler = on_stop_flag_signal;
   sigemptyset(&action.sa_mask);
@@ -40,7 +40,11 @@ void install_stop_flag() {
 }
 
 bool stop_requested() {
-  return g_stop_flag.load();
+  return g_stop_signal.load() != 0;
+}
+
+int stop_signal() {
+  return g_stop_signal.load();
 }
 
 }  // namespace sonarloop::tools

@@ -1,6 +1,5 @@
 #pragma once
 // Small helpers shared by the sonarloop subcommands: comma lists and a Ctrl-C stop flag.
-// (cmd_dataset, cmd_run and cmd_train still carry their own copies; they can move here.)
 #include <string>
 #include <vector>
 
@@ -14,5 +13,7 @@ std::vector<std::string> split_comma_list(const std::string& text);
 void install_stop_flag();
 // Whether SIGINT or SIGTERM arrived since install_stop_flag(). Async-signal-safe to poll.
 bool stop_requested();
+// The signal that asked to stop (SIGINT or SIGTERM), 0 if none.
+int stop_signal();
 
 }  // namespace sonarloop::tools

@@ -1,6 +1,5 @@
 // sonarloop run: the real-time emulator (emulator/emulator.h) — pings as XTF over UDP, navigation
 // as NMEA 2000 on CAN, recordings, live statistics.
-#include <atomic>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -15,30 +14,13 @@
 #include "emulator/pacer.h"
 #include "emulator/run_stats.h"
 #include "tools/args.h"
+#include "tools/cli_helpers.h"
 #include "tools/commands.h"
 #include "tools/onboard_output.h"
 #include "tools/scenario_source.h"
 
 namespace sonarloop::tools {
 namespace {
-
-std::atomic<int> g_stop_signal{0};
-static_assert(std::atomic<int>::is_always_lock_free, "set from a signal handler");
-
-extern "C" void on_run_stop_signal(int sig) {
-  g_stop_signal.store(sig, std::memory_order_relaxed);
-}
-
-// SIGINT/SIGTERM set a flag that the publisher polls; the handler is reset after the first
-// signal (SA_RESETHAND), so a second Ctrl-C ends the process at once.
-void install_stop_handler() {
-  struct sigaction sa {};
-  sa.sa_handler = on_run_stop_signal;
-  sigemptyset(&sa.sa_mask);
-  sa.sa_flags = SA_RESETHAND;
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-}
 
 double ms(double ns) {
   return ns * 1e-6;
@@ -176,7 +158,7 @@ int run_run(const std::vector<std::string>& argv) {
     emulator::format_stats_line(s, line, sizeof line);
     std::fprintf(stderr, "%s\n", line);
   };
-  hooks.stop_requested = [] { return g_stop_signal.load(std::memory_order_relaxed) != 0; };
+  hooks.stop_requested = [] { return stop_requested(); };
   std::unique_ptr<InProcessOnboard> onboard;  // --classify: fed from on_ping
   if (model) {
     hooks.on_ping = [&onboard](std::span<const std::uint8_t> p) {
@@ -220,9 +202,9 @@ int run_run(const std::vector<std::string>& argv) {
                    "hint: no --udp given, pings are not streamed (e.g. --udp 127.0.0.1:5600)\n");
     }
   }
-  install_stop_handler();
+  install_stop_flag();  // a second Ctrl-C ends the process at once
   const emulator::RunStats stats = emu.run();
-  const int sig = g_stop_signal.load();
+  const int sig = stop_signal();
   print_final(stats, sig == SIGINT    ? "stopped by SIGINT"
                      : sig == SIGTERM ? "stopped by SIGTERM"
                                       : "done");

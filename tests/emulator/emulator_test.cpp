@@ -30,10 +30,7 @@ using namespace sonarloop::emulator;
 
 namespace {
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using sonarloop::testing::slurp;
 
 config::Scenario small_scenario() {
   return config::parse_scenario(testing::small_scenario_yaml(), "test.yaml");

@@ -42,10 +42,7 @@ const std::string kDatasetArgs =
     " --count 450 --resolution-cm 5 --seed 1 --threads 2 --seabed " + kScenario;
 const std::string kTrainArgs = " --aspect-sectors 8 --p 10";
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using sonarloop::testing::slurp;
 
 int run(const testing::TempDir& dir, const std::string& args, const std::string& log) {
   return testing::run_command(kBinary + " " + args + " > " + dir.file(log + ".out") + " 2> " +

@@ -11,10 +11,7 @@ namespace {
 
 const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using sonarloop::testing::slurp;
 
 int run(const std::string& args) {
   return sonarloop::testing::run_command(kBinary + " " + args + " > /dev/null 2>&1");

@@ -27,10 +27,7 @@ const std::string kRealXtf =
     std::string(SONARLOOP_SOURCE_DIR) + "/tests/data/xtf/scotsman-iver2.xtf";
 constexpr std::size_t kRealPings = 461;
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using sonarloop::testing::slurp;
 
 // Runs `sonarloop replay ARGS`, stderr to `err_file`; returns the exit status.
 int replay(const std::string& args, const std::string& err_file) {

@@ -44,10 +44,7 @@ const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloo
 const std::string kPython = SONARLOOP_PYTHON;
 const std::string kHelpers = std::string(SONARLOOP_SOURCE_DIR) + "/tests/emulator/";
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using sonarloop::testing::slurp;
 
 void write_file(const std::string& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;

@@ -20,10 +20,7 @@ namespace fs = std::filesystem;
 
 const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using sonarloop::testing::slurp;
 
 int run(const std::string& args, const std::string& log) {
   return sonarloop::testing::run_command(kBinary + " " + args + " > '" + log + "' 2>&1");

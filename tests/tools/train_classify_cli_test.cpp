@@ -20,10 +20,7 @@ namespace {
 
 const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using sonarloop::testing::slurp;
 
 // Runs the binary; stdout and stderr go to files in `dir`.
 int run(const testing::TempDir& dir, const std::string& args) {

@@ -34,12 +34,7 @@ CanFrame frame_of_hex(std::uint32_t id, const std::string& hex) {
   return frame_of(id, true, data);
 }
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using sonarloop::testing::slurp;
 
 std::string script(const std::string& name) {
   return std::string(SONARLOOP_SOURCE_DIR) + "/tests/drivers/can/" + name;

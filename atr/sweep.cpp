@@ -223,6 +223,7 @@ render::ChipDatasetSpec render_group_spec(const SweepExperiment& e, const Render
   spec.altitude_max_m = g.altitude_max_m;
   spec.sonar = s.sonar;
   spec.sonar.source_level_db += g.source_level_offset_db;
+  spec.renderer = s.renderer;
   return spec;
 }
 

@@ -68,6 +68,7 @@ struct SweepSettings {
                                                targets::TargetType::kBox};
   std::vector<render::DatasetSeabed> seabeds;  // must not be empty
   render::SonarDesc sonar;
+  render::RendererKind renderer = render::RendererKind::kProfile;
 };
 
 // One point of an experiment.

@@ -16,7 +16,6 @@
 #include "emulator/pose_source.h"
 #include "emulator/recording.h"
 #include "emulator/render_queue.h"
-#include "emulator/view_cache.h"
 #include "emulator/xtf_ping.h"
 #include "sim/core/geodesy.h"
 #include "sim/render/ping_renderer.h"
@@ -28,6 +27,8 @@ namespace sonarloop::emulator {
 namespace {
 
 constexpr SimTime kNever = std::numeric_limits<SimTime>::max();
+// Render workers make the scene this far ahead of the pings along the track (ping_producer.h).
+constexpr double kPrepareAhead_m = 10.0;
 // Longest sleep of the publisher: bounds how long a stop request (SIGINT) waits.
 constexpr std::int64_t kStopPollNs = 50'000'000;
 // XTF ping packet: 256-byte ping header, 64-byte channel header, sizes padded to 64 bytes
@@ -35,8 +36,6 @@ constexpr std::int64_t kStopPollNs = 50'000'000;
 constexpr int kXtfPingHeaderBytes = 256;
 constexpr int kXtfChannelHeaderBytes = 64;
 constexpr int kXtfPadBytes = 64;
-// Niceness of the view builder in paced runs (view_cache.h).
-constexpr int kBuilderNice = 10;
 
 double seconds(std::int64_t ns) {
   return static_cast<double>(ns) * 1e-9;
@@ -115,7 +114,6 @@ struct Emulator::Impl {
   std::vector<std::unique_ptr<can::CanTransport>> cans;
   std::unique_ptr<Recording> recording;
   std::unique_ptr<PoseSource> pose_source;
-  std::unique_ptr<ViewCache> views;
   std::unique_ptr<ScenePingProducer> producer;
   std::unique_ptr<RenderQueue> queue;
 
@@ -184,7 +182,7 @@ void Emulator::Impl::configure() {
       throw std::invalid_argument(msg);
     }
   }
-  renderer = std::make_unique<render::PingRenderer>(*scene, setup);
+  renderer = render::make_ping_renderer(options.renderer, setup);
 
   // the vehicle: the full heightmap inside the modelled seabed, the large-scale relief beyond it
   // (no tiles are generated outside the extent just to report an altitude)
@@ -267,24 +265,18 @@ void Emulator::Impl::open_outputs() {
     }
   }
 
-  ViewCacheOptions vco;
-  // paced: background builds leave the other cores to rendering and publishing; --rate max:
-  // the renderers wait for the next view anyway, so it gets every thread
-  vco.build_threads = options.rate.max ? options.threads : 1;
-  vco.builder_nice = options.rate.max ? 0 : kBuilderNice;
-  views = std::make_unique<ViewCache>(*scene, clock, vco);
   PingProducerSetup ps;
   ps.renderer = renderer.get();
+  ps.scene = scene.get();
   ps.trajectory = trajectory.get();
   ps.nav = nav.get();
   ps.ltp = &ltp;
   ps.header = &header;
-  ps.views = views.get();
   ps.clock = &clock;
   ps.seed = scenario.scene.seed;
   ps.ping_period_ns = period;
   ps.threads = options.threads;
-  ps.chunk_length_m = options.chunk_length_m;
+  ps.prepare_ahead_m = kPrepareAhead_m;
   ps.pose_source = pose_source.get();
   ps.pacer = &pacer;
   ps.stale_after_ns = from_seconds(options.stale_after_s);
@@ -303,12 +295,7 @@ void Emulator::Impl::update_stats(std::int64_t now) {
                                                     1e-6 / static_cast<double>(stats.pings_rendered)
                                               : 0.0;
   stats.render_max_ms = static_cast<double>(queue->produce_max_ns()) * 1e-6;
-  const ViewCacheStats v = views->stats();
-  stats.view_builds = v.builds;
-  stats.view_build_max_s = v.build_max_s;
-  stats.view_build_total_s = v.build_total_s;
-  stats.view_waits = v.waits;
-  stats.view_wait_total_s = v.wait_total_s;
+  stats.tiles_made = scene->seabed().tiles_made();
   if (udp) {
     stats.udp_dropped = udp->dropped();
   }
@@ -493,8 +480,7 @@ void Emulator::Impl::loop() {
 }
 
 void Emulator::Impl::shutdown() {
-  // the renderers first (a worker waiting for a view build is released by cancel()), then the
-  // outputs, so that the recordings are complete before a view build still under way finishes
+  // the renderers first, then the outputs, so that the recordings are complete
   if (queue) queue->stop();
   std::string errors;
   for (auto& c : cans) {
@@ -512,17 +498,17 @@ void Emulator::Impl::shutdown() {
     }
   }
   if (!errors.empty()) message("warning: " + errors);
-  if (views) views->stop();
 }
 
 RunStats Emulator::Impl::run() {
   try {
-    // start-up: the first scene view, before the clock starts
+    // start-up: what the first ping reads, before the clock starts
     const std::int64_t t0 = clock.now_ns();
     producer->prepare(0, options.threads);
     char msg[160];
-    std::snprintf(msg, sizeof msg, "scene view for the first %.0f m of track built in %.2f s",
-                  options.chunk_length_m, seconds(clock.now_ns() - t0));
+    std::snprintf(
+        msg, sizeof msg, "%s renderer: scene for the first ping and %.0f m ahead made in %.3f s",
+        render::renderer_name(options.renderer), kPrepareAhead_m, seconds(clock.now_ns() - t0));
     message(msg);
 
     // t = 0: the epoch and the pacer's wall start, read together

@@ -15,8 +15,8 @@
 //       time; built from NavSensorModel::measure(state_at(t)) on the publisher thread.
 //     Events are handled in time order, navigation first at equal times.
 //   render workers (--threads): render pings ahead into the RenderQueue ring (render_queue.h,
-//     ping_producer.h); a late ping never blocks navigation.
-//   view builder (view_cache.h): builds the next stretch's Embree view in the background.
+//     ping_producer.h), and make the scene ahead of them (heightmap tiles for the profile
+//     renderer, Embree views for the ray tracer); a late ping never blocks navigation.
 //   transports' own threads (socketcand server), pose source thread (--pose-from).
 //
 // UDP stream (--udp HOST:PORT): the 1024-byte XTF file header as one datagram first, then again
@@ -52,6 +52,7 @@
 #include "drivers/xtf/xtf_types.h"
 #include "emulator/pacer.h"
 #include "emulator/run_stats.h"
+#include "sim/render/ping_renderer.h"
 #include "sim/render/sonar.h"
 
 namespace sonarloop::emulator {
@@ -73,8 +74,8 @@ struct EmulatorOptions {
   double stale_after_s = 2.0;
   std::optional<std::int64_t> epoch_utc_ns;
   double stats_interval_s = 5.0;  // live statistics every this many wall seconds (0: never)
-  double chunk_length_m = 100.0;  // track length covered by one scene view
-  int ring_slots = 16;            // render-ahead depth (pings)
+  render::RendererKind renderer = render::RendererKind::kProfile;  // --renderer
+  int ring_slots = 16;                                             // render-ahead depth (pings)
   int udp_send_buffer_bytes = 1 << 20;
 };
 

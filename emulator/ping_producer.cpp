@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <thread>
 
 #include "drivers/xtf/xtf_codec.h"
 #include "emulator/xtf_ping.h"
@@ -14,6 +15,8 @@ namespace {
 constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 // Longest single sleep while waiting for a ping time, so that cancel() is seen promptly.
 constexpr std::int64_t kCancelPollNs = 20'000'000;
+// Start-up prepares one ping per this much track of the look-ahead window.
+constexpr double kStartupPrepareStride_m = 1.0;
 
 }  // namespace
 
@@ -34,57 +37,55 @@ vehicle::VehicleState merge_external_pose(vehicle::VehicleState state, const Ext
 
 ScenePingProducer::ScenePingProducer(const PingProducerSetup& setup)
     : setup_(setup), exact_nav_(vehicle::NavNoiseDesc{}, setup.seed) {
-  if (!setup_.renderer || !setup_.trajectory || !setup_.nav || !setup_.ltp || !setup_.header ||
-      !setup_.views || !setup_.clock || setup_.ping_period_ns <= 0) {
+  if (!setup_.renderer || !setup_.scene || !setup_.trajectory || !setup_.nav || !setup_.ltp ||
+      !setup_.header || !setup_.clock || setup_.ping_period_ns <= 0) {
     throw std::invalid_argument("ScenePingProducer: incomplete setup");
   }
   if (setup_.pose_source && !setup_.pacer) {
     throw std::invalid_argument("ScenePingProducer: an external pose source needs the pacer");
   }
   scratch_.resize(static_cast<std::size_t>(std::max(1, setup_.threads)));
-  // pings per chunk: chunk_length_m of track at the trajectory's speed
+  // pings in prepare_ahead_m of track at the trajectory's speed
   const double spacing_m =
       setup_.trajectory->desc().speed_m_s * static_cast<double>(setup_.ping_period_ns) * 1e-9;
-  chunk_pings_ = std::max<std::int64_t>(
-      1, static_cast<std::int64_t>(std::ceil(setup_.chunk_length_m / std::max(spacing_m, 1e-9))));
-  plan_.reserve(64);
-}
-
-scene::Box2 ScenePingProducer::chunk_region(std::int64_t c) {
-  while (static_cast<std::int64_t>(plan_.size()) <= c) {
-    const auto ci = static_cast<std::int64_t>(plan_.size());
-    // the swaths of the chunk's pings
-    scene::Box2 swath;
-    for (std::int64_t i = 0; i < chunk_pings_; ++i) {
-      const SimTime t = (ci * chunk_pings_ + i) * setup_.ping_period_ns;
-      const scene::Box2 r = setup_.renderer->swath_region(setup_.trajectory->state_at(t).pose);
-      swath = i == 0 ? r : box_union(swath, r);
-    }
-    swath = setup_.views->clip(swath);
-    if (!plan_.empty() && box_contains(plan_.back(), swath)) {
-      plan_.push_back(plan_.back());  // the previous chunk's view already covers it
-    } else {
-      plan_.push_back(swath);
-    }
-  }
-  return plan_[static_cast<std::size_t>(c)];
-}
-
-scene::Box2 ScenePingProducer::view_region_for_ping(std::int64_t k) {
-  std::lock_guard<std::mutex> lock(plan_mu_);
-  return chunk_region(k / chunk_pings_);
+  ahead_pings_ = std::max<std::int64_t>(
+      1, static_cast<std::int64_t>(std::ceil(setup_.prepare_ahead_m / std::max(spacing_m, 1e-9))));
 }
 
 void ScenePingProducer::prepare(std::int64_t first, int threads) {
   if (external()) {
     const Pose p = setup_.trajectory->state_at(first * setup_.ping_period_ns).pose;
-    const scene::Box2 swath = setup_.renderer->swath_region(p);
-    setup_.views->build_now(box_expand(swath, setup_.chunk_length_m), threads);
+    setup_.renderer->prepare(*setup_.scene, p, {}, scratch_[0]);
     return;
   }
-  setup_.views->build_now(view_region_for_ping(first), threads);
-  // and the next chunk's, in the background
-  setup_.views->prefetch(view_region_for_ping((first / chunk_pings_ + 1) * chunk_pings_));
+  // the look-ahead window, one ping per kStartupPrepareStride_m of track (the tiles are metres
+  // wide), shared out over the threads
+  const double spacing_m =
+      setup_.trajectory->desc().speed_m_s * static_cast<double>(setup_.ping_period_ns) * 1e-9;
+  const std::int64_t stride = std::max<std::int64_t>(
+      1, static_cast<std::int64_t>(kStartupPrepareStride_m / std::max(spacing_m, 1e-9)));
+  std::vector<std::int64_t> pings;
+  for (std::int64_t k = first; k <= first + ahead_pings_; k += stride) {
+    if (k * setup_.ping_period_ns >= setup_.trajectory->end_time()) break;
+    pings.push_back(k);
+  }
+  pings.push_back(
+      std::min(first + ahead_pings_, (setup_.trajectory->end_time() - 1) / setup_.ping_period_ns));
+  const auto n = static_cast<int>(std::min<std::size_t>(
+      pings.size(), static_cast<std::size_t>(std::max(1, std::min(threads, setup_.threads)))));
+  std::atomic<std::size_t> next{0};
+  auto work = [&](int w) {
+    for (std::size_t i = next++; i < pings.size(); i = next++) {
+      const Pose p = setup_.trajectory->state_at(pings[i] * setup_.ping_period_ns).pose;
+      setup_.renderer->prepare(*setup_.scene, p, {}, scratch_[static_cast<std::size_t>(w)]);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int w = 1; w < n; ++w)
+    pool.emplace_back(work, w);
+  work(0);
+  for (auto& t : pool)
+    t.join();
 }
 
 bool ScenePingProducer::wait_for_ping_time(SimTime t) {
@@ -112,8 +113,8 @@ void ScenePingProducer::produce(std::int64_t k, int worker, PingSlot& slot) {
   truth.time_utc_ns = epoch_utc_ns_ + t;
 
   vehicle::VehicleState state;
-  std::shared_ptr<const scene::SceneView> view;
   const vehicle::NavSensorModel* nav_model = setup_.nav;
+  render::PingScratch& scratch = scratch_[static_cast<std::size_t>(worker)];
   if (external()) {
     if (!wait_for_ping_time(t)) {
       slot.emitted = false;
@@ -130,31 +131,20 @@ void ScenePingProducer::produce(std::int64_t k, int worker, PingSlot& slot) {
     // what the source lacks comes from the trajectory
     state = merge_external_pose(setup_.trajectory->state_at(t), *ext);
     nav_model = &exact_nav_;
-    const scene::Box2 swath = setup_.renderer->swath_region(state.pose);
-    view = setup_.views->get_covering(swath, box_expand(swath, setup_.chunk_length_m));
-    setup_.views->prefetch_covering(box_expand(swath, 0.5 * setup_.chunk_length_m),
-                                    box_expand(swath, setup_.chunk_length_m));
   } else {
     state = setup_.trajectory->state_at(t);
-    const std::int64_t c = k / chunk_pings_;
-    const scene::Box2 region = view_region_for_ping(k);
-    const scene::Box2 next = view_region_for_ping((c + 1) * chunk_pings_);
-    if (next.min != region.min || next.max != region.max) setup_.views->prefetch(next);
-    view = setup_.views->get(region);
-  }
-  if (!view) {
-    // the view cache stopped (cancelled run, or a failed build)
-    const std::string why = setup_.views->error();
-    if (!why.empty()) throw std::runtime_error(why);
-    slot.emitted = false;
-    return;
+    // what a ping further on will read, made now on this worker
+    const SimTime ahead = (k + ahead_pings_) * setup_.ping_period_ns;
+    if (ahead < setup_.trajectory->end_time()) {
+      setup_.renderer->prepare(*setup_.scene, setup_.trajectory->state_at(ahead).pose, {}, scratch);
+    }
   }
 
-  // render and encode time (view waits are counted by the view cache)
+  // render and encode time
   const std::int64_t t0 = setup_.clock->now_ns();
   // the ping, from the true pose
-  setup_.renderer->render(*view, state.pose, setup_.seed, static_cast<std::uint64_t>(k), {},
-                          scratch_[static_cast<std::size_t>(worker)], slot.lines);
+  setup_.renderer->render(*setup_.scene, state.pose, setup_.seed, static_cast<std::uint64_t>(k), {},
+                          scratch, slot.lines);
 
   // the navigation the sonar records with it
   const vehicle::NavSolution nav = nav_model->measure(state);

@@ -1,6 +1,6 @@
 #pragma once
 // What a render worker does for ping k (RenderQueue's PingProducer): the pose at the ping time,
-// the scene view, the render, the navigation the sonar records, and the XTF packet.
+// the render, the navigation the sonar records, and the XTF packet.
 //
 // Ping time t_k = k·ping_period (ns since the mission start), UTC = epoch + t_k. Two pose modes:
 //
@@ -8,31 +8,26 @@
 // fields come from NavSensorModel::measure(state) (what the vehicle's navigation reports, with
 // the scenario's errors), the render from the true pose, with randomness keyed by (seed, k).
 // The ping is therefore a pure function of (scenario, k): workers may render it any time ahead,
-// on any thread. Views follow a fixed plan: the pings are cut into chunks of chunk_pings()
-// consecutive pings (chunk_length_m of track); chunk c's view covers the swaths (max range
-// around the sonar) of all its pings, clipped to the seabed, or is chunk c-1's view when that
-// already covers them. The plan depends only on the trajectory, so the same ping is always
-// rendered with the same view (byte-identical pings). Rendering chunk c prefetches chunk c+1's
-// view on the view cache's thread.
+// on any thread. Before rendering ping k a worker prepares ping k + prepare_ahead_pings()
+// (PingRenderer::prepare: the heightmap tiles along its ground lines, or the ray tracer's view),
+// so the scene is made ahead of the pings on the workers themselves and a ping rarely waits
+// for it.
 //
 // External pose (--pose-from). The worker waits for the ping's wall time, takes the source's
 // latest pose and renders from it. Fields the source does not provide (its has_* flags) come
 // from the trajectory at t_k: position (north, east), depth, heading, pitch and roll; velocity
 // and yaw rate always do (no external source sends them). A pose older than stale_after (or none
 // yet) gives no ping (slot.emitted = false). The navigation recorded in the XTF ping is that
-// pose without added errors (it is the vehicle's own navigation). Views: any cached view that
-// covers the swath, else one built around it with chunk_length_m of margin; a view covering a
-// margin of half that is prefetched as the vehicle nears the edge.
+// pose without added errors (it is the vehicle's own navigation). Poses are not known ahead:
+// what a ping reads is made when it is rendered.
 #include <atomic>
 #include <cstdint>
-#include <mutex>
 #include <vector>
 
 #include "drivers/xtf/xtf_types.h"
 #include "emulator/pacer.h"
 #include "emulator/pose_source.h"
 #include "emulator/render_queue.h"
-#include "emulator/view_cache.h"
 #include "sim/core/geodesy.h"
 #include "sim/render/ping_renderer.h"
 #include "sim/vehicle/nav_sensor.h"
@@ -46,16 +41,16 @@ vehicle::VehicleState merge_external_pose(vehicle::VehicleState state, const Ext
 
 struct PingProducerSetup {
   const render::PingRenderer* renderer = nullptr;
+  const scene::Scene* scene = nullptr;
   const vehicle::Trajectory* trajectory = nullptr;
   const vehicle::NavSensorModel* nav = nullptr;
   const LocalTangentPlane* ltp = nullptr;
   const xtf::XtfFileHeader* header = nullptr;
-  ViewCache* views = nullptr;
   const Clock* clock = nullptr;  // times the renders
   std::uint64_t seed = 0;        // the scenario's seed (render randomness)
   SimTime ping_period_ns = 0;
   int threads = 1;                // workers (one scratch each)
-  double chunk_length_m = 100.0;  // along-track length of a view chunk / HIL view margin
+  double prepare_ahead_m = 10.0;  // trajectory mode: prepare pings this far ahead along track
   // --pose-from (all three set, or none)
   const PoseSource* pose_source = nullptr;
   const Pacer* pacer = nullptr;
@@ -70,32 +65,26 @@ class ScenePingProducer final : public PingProducer {
   void set_epoch_utc_ns(std::int64_t epoch_utc_ns) { epoch_utc_ns_ = epoch_utc_ns; }
 
   void produce(std::int64_t k, int worker, PingSlot& slot) override;
-  // Stops waiting for ping times and for views (the view cache is cancelled: end of the run).
-  void cancel() override {
-    cancelled_ = true;
-    setup_.views->cancel();
-  }
+  // Stops waiting for ping times (end of the run).
+  void cancel() override { cancelled_ = true; }
 
   bool external() const { return setup_.pose_source != nullptr; }
-  // Trajectory mode: pings per view chunk, and the (clipped) region of ping k's view.
-  std::int64_t chunk_pings() const { return chunk_pings_; }
-  scene::Box2 view_region_for_ping(std::int64_t k);
-  // Start-up: builds the view that ping `first` needs on the calling thread (trajectory mode;
-  // external mode: around the trajectory's pose at t = 0, as a first guess).
+  // Trajectory mode: how many pings ahead a worker prepares.
+  std::int64_t prepare_ahead_pings() const { return ahead_pings_; }
+  // Start-up: prepares what pings first .. first + prepare_ahead_pings() read, with `threads`
+  // threads, so that the workers start with their look-ahead already made (trajectory mode;
+  // external mode: the trajectory's pose at that time, as a first guess).
   void prepare(std::int64_t first, int threads);
 
  private:
-  scene::Box2 chunk_region(std::int64_t c);  // plan_mu_ held
   // waits until the ping's wall time; false if cancelled
   bool wait_for_ping_time(SimTime t);
 
   PingProducerSetup setup_;
   vehicle::NavSensorModel exact_nav_;  // no errors: the external pose as navigation
   std::int64_t epoch_utc_ns_ = 0;
-  std::int64_t chunk_pings_ = 1;
-  std::vector<render::PingScratch> scratch_;  // one per worker
-  std::mutex plan_mu_;
-  std::vector<scene::Box2> plan_;  // view region of chunk c (grows one chunk at a time)
+  std::int64_t ahead_pings_ = 1;
+  std::vector<render::PingScratch> scratch_;  // one per worker (prepare() uses them too)
   std::atomic<bool> cancelled_{false};
 };
 

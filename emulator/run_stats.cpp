@@ -163,10 +163,8 @@ std::string stats_json(const RunStats& s) {
   w.field("dropped", s.udp_dropped).field("bytes", s.udp_bytes);
   w.end_object();
   w.field("recorded_pings", s.recorded_pings);
-  w.key("views").begin_object();
-  w.field("builds", s.view_builds).field("build_max_s", s.view_build_max_s, 6);
-  w.field("build_total_s", s.view_build_total_s, 6);
-  w.field("render_waits", s.view_waits).field("wait_total_s", s.view_wait_total_s, 6);
+  w.key("scene").begin_object();
+  w.field("tiles_made", s.tiles_made);
   w.end_object();
   w.end_object();
   return w.str();

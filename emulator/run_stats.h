@@ -97,12 +97,8 @@ struct RunStats {
   std::uint64_t pings_rendered = 0;
   double render_mean_ms = 0.0;
   double render_max_ms = 0.0;
-  std::uint64_t view_builds = 0;
-  double view_build_max_s = 0.0;
-  double view_build_total_s = 0.0;
-  std::uint64_t view_waits = 0;  // renders that had to wait for a view build
-  double view_wait_total_s = 0.0;
-  double startup_s = 0.0;  // scene, first view and outputs, before t = 0
+  std::uint64_t tiles_made = 0;  // heightmap tiles the seabed made (all detail levels)
+  double startup_s = 0.0;        // scene, first view and outputs, before t = 0
 
   // deadline misses: late + dropped
   std::uint64_t deadline_misses() const { return pings_late + pings_dropped; }

@@ -47,4 +47,11 @@ int stop_signal() {
   return g_stop_signal.load();
 }
 
+render::RendererKind renderer_option(const Args& args) {
+  const std::string name = args.get_or("--renderer", "profile");
+  const auto kind = render::parse_renderer(name);
+  if (!kind) throw UsageError("--renderer: '" + name + "' is not one of profile, raytrace");
+  return *kind;
+}
+
 }  // namespace sonarloop::tools

@@ -3,6 +3,9 @@
 #include <string>
 #include <vector>
 
+#include "sim/render/ping_renderer.h"
+#include "tools/args.h"
+
 namespace sonarloop::tools {
 
 // "a, b,,c" -> {"a", "b", "c"}: items trimmed of blanks and tabs, empty items dropped.
@@ -15,5 +18,8 @@ void install_stop_flag();
 bool stop_requested();
 // The signal that asked to stop (SIGINT or SIGTERM), 0 if none.
 int stop_signal();
+
+// --renderer profile|raytrace (default profile); a UsageError names the choices.
+render::RendererKind renderer_option(const Args& args);
 
 }  // namespace sonarloop::tools

@@ -1,5 +1,9 @@
-// sonarloop bench: machine-readable speed figures, one JSON object per line on stdout.
+// sonarloop bench: machine-readable speed figures, one JSON object per line on stdout. Every
+// speed section measures the profile renderer and the ray-traced reference side by side in the
+// same run and reports their ratio (the machine may be shared: ratios taken together are what
+// compare). Accuracy sections are in bench_accuracy.cpp.
 #include <sys/utsname.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -11,9 +15,13 @@
 #include <thread>
 
 #include "drivers/json/json_writer.h"
+#include "emulator/emulator.h"
+#include "sim/render/chip_renderer.h"
+#include "sim/render/raytrace_renderer.h"
 #include "sim/render/track_renderer.h"
 #include "sim/scene/scene.h"
 #include "tools/args.h"
+#include "tools/bench_accuracy.h"
 #include "tools/commands.h"
 #include "tools/progress.h"
 #include "tools/scenario_source.h"
@@ -22,6 +30,8 @@ namespace sonarloop::tools {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using render::RendererKind;
+constexpr RendererKind kKinds[] = {RendererKind::kProfile, RendererKind::kRaytrace};
 
 std::string cpu_model() {
   std::ifstream in("/proc/cpuinfo");
@@ -37,7 +47,16 @@ void emit(const json::Writer& w) {
   std::fflush(stdout);
 }
 
-// A straight north-going line of pings over the default scenario, one per pixel.
+void emit_ratio(const char* bench, const char* what, double profile, double raytrace) {
+  json::Writer w;
+  w.begin_object().field("bench", bench).field("ratio", what);
+  w.field("profile", profile, 5).field("raytrace", raytrace, 5);
+  w.field("raytrace_over_profile", profile > 0 ? raytrace / profile : 0.0, 4);
+  w.end_object();
+  emit(w);
+}
+
+// A straight north-going line of pings.
 std::vector<Pose> line_poses(double north0, double east, double length, double spacing,
                              double depth) {
   std::vector<Pose> p(static_cast<std::size_t>(std::floor(length / spacing)) + 1);
@@ -49,326 +68,354 @@ std::vector<Pose> line_poses(double north0, double east, double length, double s
 }
 
 render::SonarDesc bench_sonar(const config::Scenario& s, double range_m, double pixel_m) {
-  render::SonarDesc sd = s.sonar;
-  sd.along_track = render::AlongTrackModel::kStrip;
-  sd.max_range_m = range_m;
-  sd.bin_size_m = pixel_m;
-  sd.along_track_resolution_m = pixel_m;
-  sd.pulse_length_s = 0.0;
-  sd.chirp_bandwidth_hz = 0.0;
-  return sd;
+  return isotropic_strip_sonar(s.sonar, range_m, pixel_m);
 }
 
-// Renders poses on a prebuilt view with `threads` threads; returns the wall time.
-double render_on_view(const render::PingRenderer& r, const scene::SceneView& view,
-                      const std::vector<Pose>& poses, int threads) {
-  std::vector<render::PingScratch> scratch(static_cast<std::size_t>(threads));
-  std::vector<render::PingLines> lines(static_cast<std::size_t>(threads));
-  std::atomic<std::size_t> next{0};
+// Renders `poses` with `threads` threads (render_track: prepares ahead, renders, in order);
+// returns the wall time.
+double render_poses(const scene::Scene& sc, const render::PingRenderer& r,
+                    const std::vector<Pose>& poses, int threads) {
+  render::TrackRenderOptions opt;
+  opt.threads = threads;
   const auto t0 = Clock::now();
-  auto work = [&](std::size_t w) {
-    for (std::size_t k = next++; k < poses.size(); k = next++) {
-      r.render(view, poses[k], 1, k, {}, scratch[w], lines[w]);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int w = 1; w < threads; ++w)
-    pool.emplace_back(work, static_cast<std::size_t>(w));
-  work(0);
-  for (auto& th : pool)
-    th.join();
+  render::render_track(
+      sc, r, poses, 1, opt,
+      [](std::size_t, const render::PingLines&, std::span<const render::TargetTrace>) {});
   return seconds_since(t0);
 }
 
-// (a) a 50 m x 50 m image at 5 cm: 1000 pings, 25 m range per side; cold = scene setup + tile
-// generation + Embree build + pings; warm = the same with the tiles already made
-void bench_image(const config::Scenario& s, int threads) {
+// (a) a 50 m x 50 m image at 5 cm: 1000 pings, 25 m range per side. cold = scenario text ->
+// last ping (parse, scene, renderer, tiles or views, pings); warm = the same pings again
+void bench_image(const std::optional<std::string>& path, int threads) {
   const double pixel = 0.05;
-  const render::SonarDesc sd = bench_sonar(s, 25.0, pixel);
-  const double depth = s.scene.water.depth_m - 6.0;
-  const auto poses = line_poses(-25.0, 0.0, 50.0 - pixel, pixel, depth);
-  auto t0 = Clock::now();
-  const scene::Scene sc(s.scene);
-  const render::SonarSetup setup = render::make_sonar_setup(sd, s.scene.water);
-  const render::PingRenderer r(sc, setup);
-  const double setup_s = seconds_since(t0);
-  scene::Box2 all = r.swath_region(poses.front());
-  all.max = all.max.cwiseMax(r.swath_region(poses.back()).max);
-  t0 = Clock::now();
-  sc.seabed().prepare(all.min.x(), all.min.y(), all.max.x(), all.max.y(), threads);
-  const double tiles_s = seconds_since(t0);
-  t0 = Clock::now();
-  auto view = sc.view(all, threads);
-  const double view_s = seconds_since(t0);
-  const double pings_s = render_on_view(r, *view, poses, threads);
-  view.reset();
-  t0 = Clock::now();
-  view = sc.view(all, threads);
-  const double view_warm_s = seconds_since(t0);
-  const double pings_warm_s = render_on_view(r, *view, poses, threads);
-  const double pings_1_s = render_on_view(r, *view, poses, 1);
-  json::Writer w;
-  w.begin_object()
-      .field("bench", "image_50m_5cm")
-      .field("pings", static_cast<std::uint64_t>(poses.size()));
-  w.field("bins_per_side", setup.bins).field("threads", threads);
-  w.field("cold_s", setup_s + tiles_s + view_s + pings_s, 4);
-  w.field("warm_s", view_warm_s + pings_warm_s, 4);
-  w.key("cold_split_s")
-      .begin_object()
-      .field("scene_setup", setup_s, 4)
-      .field("tiles", tiles_s, 4)
-      .field("embree_view", view_s, 4)
-      .field("pings", pings_s, 4)
-      .end_object();
-  w.field("pings_only_s", pings_warm_s, 4).field("pings_only_1_thread_s", pings_1_s, 4);
-  w.field("paper_s", 7.0).field("paper_machine", "2 GHz Core 2 Duo (Pailhas et al. 2010)");
-  w.end_object();
-  emit(w);
+  double cold[2] = {0, 0}, warm[2] = {0, 0};
+  for (int i = 0; i < 2; ++i) {
+    const RendererKind kind = kKinds[i];
+    auto t0 = Clock::now();
+    const config::Scenario s = load_scenario_or_default(path);
+    const double parse_s = seconds_since(t0);
+    t0 = Clock::now();
+    const render::SonarDesc sd = bench_sonar(s, 25.0, pixel);
+    const scene::Scene sc(s.scene);
+    const render::SonarSetup setup = render::make_sonar_setup(sd, s.scene.water);
+    const auto r = render::make_ping_renderer(kind, setup);
+    const double setup_s = seconds_since(t0);
+    const auto poses = line_poses(-25.0, 0.0, 50.0 - pixel, pixel, s.scene.water.depth_m - 6.0);
+    const double pings_s = render_poses(sc, *r, poses, threads);
+    const std::uint64_t tiles = sc.seabed().tiles_made();
+    warm[i] = render_poses(sc, *r, poses, threads);
+    const double one_thread_s = render_poses(sc, *r, poses, 1);
+    cold[i] = parse_s + setup_s + pings_s;
+    json::Writer w;
+    w.begin_object().field("bench", "image_50m_5cm").field("renderer", render::renderer_name(kind));
+    w.field("pings", static_cast<std::uint64_t>(poses.size()));
+    w.field("bins_per_side", setup.bins).field("threads", threads);
+    w.field("cold_s", cold[i], 4).field("warm_s", warm[i], 4);
+    w.key("cold_split_s")
+        .begin_object()
+        .field("parse", parse_s, 4)
+        .field("scene_and_renderer", setup_s, 4)
+        .field("pings_with_tiles_or_views", pings_s, 4)
+        .end_object();
+    w.field("tiles_made", tiles).field("warm_1_thread_s", one_thread_s, 4);
+    w.field("paper_s", 7.0).field("paper_machine", "2 GHz Core 2 Duo (Pailhas et al. 2010)");
+    w.end_object();
+    emit(w);
+  }
+  emit_ratio("image_50m_5cm", "cold_s", cold[0], cold[1]);
+  emit_ratio("image_50m_5cm", "warm_s", warm[0], warm[1]);
 }
 
-// (b) pings per second and real-time factor at 5 cm, 50 m range, 1 thread and all threads, on
-// a prebuilt view (the emulator builds views ahead of the pings, off the rendering path)
+// (b) pings per second and real-time factor at 5 cm, 50 m range, on 1 thread and all threads,
+// with the scene made (tiles / views) before timing
 void bench_realtime(const config::Scenario& s, int threads) {
   const render::SonarDesc sd = bench_sonar(s, 50.0, 0.05);
   const scene::Scene sc(s.scene);
   const render::SonarSetup setup = render::make_sonar_setup(sd, s.scene.water);
-  const render::PingRenderer r(sc, setup);
   const auto poses = line_poses(-20.0, 0.0, 20.0, 0.05, s.scene.water.depth_m - 7.5);
-  scene::Box2 all = r.swath_region(poses.front());
-  all.max = all.max.cwiseMax(r.swath_region(poses.back()).max);
-  const auto view = sc.view(all, threads);
-  for (int t : {1, threads}) {
-    const double seconds = render_on_view(r, *view, poses, t);
-    const double pps = static_cast<double>(poses.size()) / seconds;
-    const double realtime_pps = setup.sound_speed_m_s / (2.0 * sd.max_range_m);
-    json::Writer w;
-    w.begin_object().field("bench", "realtime_5cm_50m").field("threads", t);
-    w.field("pings", static_cast<std::uint64_t>(poses.size()));
-    w.field("rays_per_bin", r.fidelity().rays_per_bin)
-        .field("along_track_rays", r.fidelity().along_track_rays);
-    w.field("pings_per_s", pps, 5).field("realtime_pings_per_s", realtime_pps, 5);
-    w.field("realtime_factor", pps / realtime_pps, 4);
-    w.field("realtime_factor_per_thread", pps / realtime_pps / t, 4);
-    w.end_object();
-    emit(w);
-    if (threads == 1) break;
+  const double realtime_pps = setup.sound_speed_m_s / (2.0 * sd.max_range_m);
+  double per_thread[2] = {0, 0};
+  for (int i = 0; i < 2; ++i) {
+    const auto r = render::make_ping_renderer(kKinds[i], setup);
+    render_poses(sc, *r, poses, threads);  // make the scene
+    for (int t : {1, threads}) {
+      const double seconds = render_poses(sc, *r, poses, t);
+      const double pps = static_cast<double>(poses.size()) / seconds;
+      if (t == 1) per_thread[i] = pps;
+      json::Writer w;
+      w.begin_object().field("bench", "realtime_5cm_50m");
+      w.field("renderer", render::renderer_name(kKinds[i])).field("threads", t);
+      w.field("pings", static_cast<std::uint64_t>(poses.size()));
+      w.field("rays_per_bin", r->fidelity().rays_per_bin)
+          .field("along_track_rays", r->fidelity().along_track_rays);
+      w.field("pings_per_s", pps, 5).field("realtime_pings_per_s", realtime_pps, 5);
+      w.field("realtime_factor", pps / realtime_pps, 4);
+      w.field("realtime_factor_per_thread", pps / realtime_pps / t, 4);
+      w.end_object();
+      emit(w);
+      if (threads == 1) break;
+    }
   }
+  emit_ratio("realtime_5cm_50m", "pings_per_s_1_thread", per_thread[0], per_thread[1]);
 }
 
-// (c) renderer ray throughput against bare Embree on the same rays
-void bench_rays(const config::Scenario& s) {
+// (c) where the time goes. Ray tracer: generate / intersect / shade and bare Embree on the same
+// rays. Profile: the march and shading (on the scene without targets), the target rays (the
+// difference with targets), and the heightmap tiles a ping needs when nothing is made yet.
+void bench_split(const config::Scenario& s) {
   const render::SonarDesc sd = bench_sonar(s, 50.0, 0.05);
   const scene::Scene sc(s.scene);
   const render::SonarSetup setup = render::make_sonar_setup(sd, s.scene.water);
-  const render::PingRenderer r(sc, setup);
   const auto poses = line_poses(-10.0, 0.0, 10.0, 0.05, s.scene.water.depth_m - 7.5);
-  scene::Box2 all = r.swath_region(poses.front());
-  all.max = all.max.cwiseMax(r.swath_region(poses.back()).max);
-  const auto view = sc.view(all, 2);
-  render::PingScratch scratch;
-  render::PingLines lines;
-  double t_gen = 0, t_isect = 0, t_shade = 0, t_bare = 0;
-  std::uint64_t rays = 0;
-  std::vector<RTCRayHit> saved;
-  for (std::size_t k = 0; k < poses.size(); ++k) {
-    auto t0 = Clock::now();
-    const double alt = r.generate_rays(*view, poses[k], {}, scratch);
-    t_gen += seconds_since(t0);
-    saved = scratch.rays;
-    t0 = Clock::now();
-    render::PingRenderer::intersect(*view, scratch);
-    t_isect += seconds_since(t0);
-    t0 = Clock::now();
-    r.shade(*view, 1, k, {}, alt, scratch, lines);
-    t_shade += seconds_since(t0);
-    rays += saved.size();
-    // bare Embree: the same rays, one rtcIntersect1 each, nothing else
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    t0 = Clock::now();
-    for (auto& rh : saved)
-      rtcIntersect1(view->rtc_scene(), &ctx, &rh);
-    t_bare += seconds_since(t0);
-  }
-  const double total = t_gen + t_isect + t_shade;
-  json::Writer w;
-  w.begin_object().field("bench", "ray_throughput").field("threads", 1);
-  w.field("rays", rays)
-      .field("rays_per_ping", static_cast<double>(rays) / static_cast<double>(poses.size()), 5);
-  w.field("renderer_rays_per_s", static_cast<double>(rays) / total, 5);
-  w.field("bare_embree_rays_per_s", static_cast<double>(rays) / t_bare, 5);
-  w.field("ratio_renderer_to_bare", t_bare / total, 4);
-  w.key("time_split")
-      .begin_object()
-      .field("generate", t_gen / total, 3)
-      .field("intersect", t_isect / total, 3)
-      .field("shade", t_shade / total, 3)
-      .end_object();
-  w.end_object();
-  emit(w);
-}
-
-struct LineSet {
-  std::vector<render::PingLines> lines;
-  std::vector<std::vector<render::TargetTrace>> traces;
-  double seconds = 0.0;
-};
-
-LineSet render_set(const scene::SceneDesc& scene_desc, const render::SonarDesc& sd,
-                   const std::vector<Pose>& poses) {
-  const scene::Scene sc(scene_desc);
-  const render::SonarSetup setup = render::make_sonar_setup(sd, scene_desc.water);
-  const render::PingRenderer r(sc, setup);
-  LineSet out;
-  out.lines.resize(poses.size());
-  out.traces.resize(poses.size());
-  render::RenderOptions opt;
-  opt.speckle = false;
-  opt.noise = false;
-  opt.truth = true;
-  std::vector<std::shared_ptr<const scene::SceneView>> views;
-  for (const auto& p : poses)
-    views.push_back(sc.view(r.swath_region(p), 2));
-  render::PingScratch scratch;
-  const auto t0 = Clock::now();
-  for (std::size_t k = 0; k < poses.size(); ++k) {
-    r.render(*views[k], poses[k], 1, k, opt, scratch, out.lines[k]);
-    out.traces[k] = scratch.traces;
-  }
-  out.seconds = seconds_since(t0);
-  return out;
-}
-
-// (d) speed against accuracy across the fidelity knobs, against a high-fidelity reference
-void bench_fidelity(const config::Scenario& s, bool quick) {
-  // pings across each target of the default scenario (5 cm pixels, 30 m range)
-  render::SonarDesc base = bench_sonar(s, 30.0, 0.05);
-  std::vector<Pose> poses;
-  const scene::Scene probe(s.scene);
-  for (const auto& t : probe.targets()) {
-    for (int k = -3; k <= 3; ++k) {
-      Pose p;
-      p.position_W = Vec3(t.desc.position_m.x() + 0.05 * k, 0.0, s.scene.water.depth_m - 7.0);
-      poses.push_back(p);
-    }
-  }
-  struct Setting {
-    int rays_per_bin, along_rays;
-    double grid_m;
-  };
-  scene::SceneDesc ref_scene = s.scene;
-  ref_scene.seabed.grid_spacing_m = 0.0125;
-  render::SonarDesc ref_sonar = base;
-  ref_sonar.rays_per_bin = quick ? 4 : 8;
-  ref_sonar.along_track_rays = quick ? 4 : 8;
-  const LineSet ref = render_set(ref_scene, ref_sonar, poses);
-  std::vector<Setting> settings;
-  for (double g : {0.0125, 0.025, 0.05, 0.1}) {
-    for (int v : {1, 2, 4}) {
-      for (int a : {1, 2, 4}) {
-        if (quick && (v == 4 || a == 4 || g == 0.0125)) continue;
-        settings.push_back({v, a, g});
-      }
-    }
-  }
-  for (const Setting& st : settings) {
-    scene::SceneDesc sdsc = s.scene;
-    sdsc.seabed.grid_spacing_m = st.grid_m;
-    render::SonarDesc son = base;
-    son.rays_per_bin = st.rays_per_bin;
-    son.along_track_rays = st.along_rays;
-    const LineSet got = render_set(sdsc, son, poses);
-    // RMS dB error over seabed bins lit in both renders (no speckle, no noise)
-    double se = 0.0;
-    long n = 0;
-    double edge_err = 0.0;
-    long edges = 0;
+  {
+    const render::RaytraceRenderer r(setup, render::default_fidelity(setup));
+    render::PingScratch scratch;
+    render::PingLines lines;
+    double t_gen = 0, t_isect = 0, t_shade = 0, t_bare = 0;
+    std::uint64_t rays = 0;
+    std::vector<RTCRayHit> saved;
     for (std::size_t k = 0; k < poses.size(); ++k) {
-      for (int side = 0; side < 2; ++side) {
-        const auto& a = side == 0 ? got.lines[k].port : got.lines[k].stbd;
-        const auto& b = side == 0 ? ref.lines[k].port : ref.lines[k].stbd;
-        for (std::size_t i = 0; i < a.size(); ++i) {
-          if (a[i] > 0.0f && b[i] > 0.0f) {
-            const double e = 10.0 * std::log10(static_cast<double>(a[i]) / b[i]);
-            se += e * e;
-            ++n;
-          }
-        }
-      }
-      for (const auto& tr : ref.traces[k]) {
-        for (const auto& tg : got.traces[k]) {
-          if (tg.target == tr.target && tg.side == tr.side && tr.shadow_last >= 0 &&
-              tg.shadow_last >= 0) {
-            edge_err += std::abs(tg.shadow_last - tr.shadow_last);
-            ++edges;
-          }
-        }
-      }
+      const auto view = r.view_for(sc, poses[k], {});
+      auto t0 = Clock::now();
+      const double alt = r.generate_rays(sc, *view, poses[k], {}, scratch);
+      t_gen += seconds_since(t0);
+      saved = scratch.rays;
+      t0 = Clock::now();
+      render::RaytraceRenderer::intersect(*view, scratch);
+      t_isect += seconds_since(t0);
+      t0 = Clock::now();
+      r.shade(sc, *view, 1, k, {}, alt, scratch, lines);
+      t_shade += seconds_since(t0);
+      rays += saved.size();
+      // bare Embree: the same rays, one rtcIntersect1 each, nothing else
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
+      t0 = Clock::now();
+      for (auto& rh : saved)
+        rtcIntersect1(view->rtc_scene(), &ctx, &rh);
+      t_bare += seconds_since(t0);
     }
+    const double total = t_gen + t_isect + t_shade;
     json::Writer w;
-    w.begin_object().field("bench", "fidelity");
-    w.field("rays_per_bin", st.rays_per_bin).field("along_track_rays", st.along_rays);
-    w.field("grid_spacing_m", st.grid_m, 4);
-    w.field("ms_per_ping", 1e3 * got.seconds / static_cast<double>(poses.size()), 4);
-    w.field("rms_db_error", n ? std::sqrt(se / static_cast<double>(n)) : 0.0, 4);
-    w.field("shadow_edge_error_bins", edges ? edge_err / static_cast<double>(edges) : 0.0, 4);
-    w.field("reference", std::string("rays ") + std::to_string(ref_sonar.rays_per_bin) + "x" +
-                             std::to_string(ref_sonar.along_track_rays) + ", grid 0.0125 m");
+    w.begin_object().field("bench", "split").field("renderer", "raytrace").field("threads", 1);
+    w.field("rays", rays)
+        .field("rays_per_ping", static_cast<double>(rays) / static_cast<double>(poses.size()), 5);
+    w.field("ms_per_ping", 1e3 * total / static_cast<double>(poses.size()), 4);
+    w.field("renderer_rays_per_s", static_cast<double>(rays) / total, 5);
+    w.field("bare_embree_rays_per_s", static_cast<double>(rays) / t_bare, 5);
+    w.field("ratio_renderer_to_bare", t_bare / total, 4);
+    w.key("time_split")
+        .begin_object()
+        .field("generate", t_gen / total, 3)
+        .field("intersect", t_isect / total, 3)
+        .field("shade", t_shade / total, 3)
+        .end_object();
+    w.end_object();
+    emit(w);
+  }
+  {
+    scene::SceneDesc bare = s.scene;
+    bare.targets.clear();
+    const auto r = render::make_ping_renderer(RendererKind::kProfile, setup);
+    // tiles: a fresh scene, each ping prepared (tiles made) then rendered, on one thread
+    const scene::Scene cold(s.scene);
+    render::PingScratch scratch;
+    render::PingLines lines;
+    double t_tiles = 0.0;
+    for (const Pose& p : poses) {
+      const auto t0 = Clock::now();
+      r->prepare(cold, p, {}, scratch);
+      t_tiles += seconds_since(t0);
+    }
+    const scene::Scene no_targets(bare);
+    render_poses(no_targets, *r, poses, 1);
+    render_poses(sc, *r, poses, 1);
+    const double t_march = render_poses(no_targets, *r, poses, 1);
+    const double t_all = render_poses(sc, *r, poses, 1);
+    std::uint64_t samples = 0, rays = 0;
+    for (std::size_t k = 0; k < poses.size(); ++k) {
+      r->render(sc, poses[k], 1, k, {}, scratch, lines);
+      samples += scratch.samples;
+      rays += scratch.rays_cast;
+    }
+    const double n = static_cast<double>(poses.size());
+    json::Writer w;
+    w.begin_object().field("bench", "split").field("renderer", "profile").field("threads", 1);
+    w.field("samples_per_ping", static_cast<double>(samples) / n, 5);
+    w.field("target_rays_per_ping", static_cast<double>(rays) / n, 5);
+    w.field("ms_per_ping", 1e3 * t_all / n, 4);
+    w.field("ns_per_sample", 1e9 * t_march / static_cast<double>(samples), 4);
+    w.key("ms_per_ping_split")
+        .begin_object()
+        .field("march_and_shade", 1e3 * t_march / n, 4)
+        .field("target_rays", 1e3 * std::max(0.0, t_all - t_march) / n, 4)
+        .field("tiles_when_cold", 1e3 * t_tiles / n, 4)
+        .end_object();
     w.end_object();
     emit(w);
   }
 }
 
+// (d) chips of the paper's study at 5 cm (single thread), highlight and shadow, on the default
+// seabed mix: the first N chips (tiles made as they go) and the same chips again
+void bench_chips(const config::Scenario& s, int count) {
+  double ms[2][2] = {{0, 0}, {0, 0}};
+  for (int kind_i = 0; kind_i < 2; ++kind_i) {
+    const render::ChipKind ck =
+        kind_i == 0 ? render::ChipKind::kHighlight : render::ChipKind::kShadow;
+    for (int i = 0; i < 2; ++i) {
+      render::ChipDatasetSpec spec;
+      spec.kind = ck;
+      spec.classes = {targets::TargetType::kManta, targets::TargetType::kRockan,
+                      targets::TargetType::kCuboid, targets::TargetType::kCylinder};
+      for (const char* name : {"flat", "ripples", "clutter"})
+        spec.seabeds.push_back(render::builtin_dataset_seabed(name));
+      spec.resolutions_m = {0.05};
+      spec.sonar = s.sonar;
+      spec.renderer = kKinds[i];
+      const auto t_setup = Clock::now();
+      const render::ChipRenderer cr(spec);
+      const double setup_s = seconds_since(t_setup);
+      auto t0 = Clock::now();
+      for (int k = 0; k < count; ++k)
+        cr.render(static_cast<std::uint64_t>(k), 0);
+      const double first_s = seconds_since(t0);
+      t0 = Clock::now();
+      for (int k = 0; k < count; ++k)
+        cr.render(static_cast<std::uint64_t>(k), 0);
+      const double again_s = seconds_since(t0);
+      ms[kind_i][i] = 1e3 * again_s / count;
+      json::Writer w;
+      w.begin_object().field("bench", "chips_5cm").field("kind", render::chip_kind_name(ck));
+      w.field("renderer", render::renderer_name(kKinds[i])).field("threads", 1);
+      w.field("chips", count).field("setup_s", setup_s, 4);
+      w.field("ms_per_chip_first", 1e3 * first_s / count, 4);
+      w.field("ms_per_chip", 1e3 * again_s / count, 4);
+      w.field("rows", cr.rows(0)).field("cols", cr.cols(0));
+      w.end_object();
+      emit(w);
+    }
+    emit_ratio("chips_5cm", render::chip_kind_name(ck), ms[kind_i][0], ms[kind_i][1]);
+  }
+}
+
+// (e) the emulator at --rate max (no outputs) along a straight line over a seabed stretched to
+// hold it: pings per second and start-up
+void bench_run(const config::Scenario& base, int threads, double profile_length_m,
+               double raytrace_length_m) {
+  double pps[2] = {0, 0};
+  for (int i = 0; i < 2; ++i) {
+    const double length = i == 0 ? profile_length_m : raytrace_length_m;
+    config::Scenario s = base;
+    s.scene.seabed.origin_m = Vec2(-50.0, -50.0);
+    s.scene.seabed.extent_m = Vec2(length + 100.0, 100.0);
+    s.vehicle.trajectory = vehicle::TrajectoryDesc{};
+    s.vehicle.trajectory.kind = vehicle::TrajectoryKind::kStraight;
+    s.vehicle.trajectory.start = {-45.0, 0.0};
+    s.vehicle.trajectory.start_heading = 0.0;
+    s.vehicle.trajectory.straight_length_m = length;
+    s.vehicle.trajectory.speed_m_s = 2.0;
+    s.vehicle.trajectory.depth.mode = vehicle::DepthMode::kAltitude;
+    s.vehicle.trajectory.depth.altitude_m = 7.5;
+    emulator::EmulatorOptions o;
+    o.rate.max = true;
+    o.threads = threads;
+    o.renderer = kKinds[i];
+    o.stats_interval_s = 0.0;
+    emulator::MonotonicClock clock;
+    emulator::EmulatorHooks hooks;
+    hooks.message = [](std::string_view) {};
+    const auto t0 = Clock::now();
+    emulator::Emulator emu(s, o, clock, hooks);
+    const emulator::RunStats st = emu.run();
+    const double total_s = seconds_since(t0);
+    pps[i] = st.wall_time_s > 0 ? static_cast<double>(st.pings_sent) / st.wall_time_s : 0.0;
+    json::Writer w;
+    w.begin_object().field("bench", "run_rate_max");
+    w.field("renderer", render::renderer_name(kKinds[i])).field("threads", threads);
+    w.field("line_m", length, 1).field("pings", st.pings_sent);
+    w.field("pings_per_s", pps[i], 5).field("realtime_factor", st.sim_time_s / st.wall_time_s, 4);
+    w.field("startup_s", st.startup_s, 4).field("total_s", total_s, 4);
+    w.field("render_mean_ms", st.render_mean_ms, 4).field("tiles_made", st.tiles_made);
+    w.end_object();
+    emit(w);
+  }
+  emit_ratio("run_rate_max", "pings_per_s", pps[0], pps[1]);
+}
+
 int run_bench(const std::vector<std::string>& argv) {
-  const Args args(argv, {{"--only"}, {"--threads"}, {"--quick", false}});
+  const Args args(argv, {{"--only", true, true}, {"--threads"}, {"--full", false}});
   if (args.positionals().size() > 1) throw UsageError("expected at most one SCENARIO.yaml");
   const int threads =
       static_cast<int>(args.get_int("--threads", 1, 256)
                            .value_or(std::max(1u, std::thread::hardware_concurrency())));
-  const std::string only = args.get_or("--only", "all");
-  if (only != "all" && only != "image" && only != "realtime" && only != "rays" &&
-      only != "fidelity") {
-    throw UsageError("--only: '" + only + "' is not one of image, realtime, rays, fidelity");
+  const std::vector<std::string> all = {"image", "realtime", "split",   "chips",
+                                        "run",   "fidelity", "accuracy"};
+  std::vector<std::string> only = args.get_all("--only");
+  if (only.empty()) only = all;
+  for (const auto& o : only) {
+    if (std::find(all.begin(), all.end(), o) == all.end()) {
+      throw UsageError("--only: '" + o +
+                       "' is not one of image, realtime, split, chips, run, fidelity, accuracy");
+    }
   }
-  const config::Scenario s = load_scenario_or_default(
-      args.positionals().empty() ? std::nullopt : std::optional(args.positionals()[0]));
+  const auto want = [&](const char* name) {
+    return std::find(only.begin(), only.end(), name) != only.end();
+  };
+  const bool full = args.has("--full");
+  const std::optional<std::string> path =
+      args.positionals().empty() ? std::nullopt : std::optional(args.positionals()[0]);
+  const config::Scenario s = load_scenario_or_default(path);
   utsname un{};
   uname(&un);
   json::Writer m;
   m.begin_object().field("bench", "machine").field("cpu", cpu_model());
   m.field("hardware_threads", static_cast<int>(std::thread::hardware_concurrency()));
-  m.field("kernel", std::string(un.release)).field("scenario", s.scene.name).end_object();
+  m.field("kernel", std::string(un.release)).field("scenario", s.scene.name);
+  m.field("full", full).end_object();
   emit(m);
-  if (only == "all" || only == "image") bench_image(s, threads);
-  if (only == "all" || only == "realtime") bench_realtime(s, threads);
-  if (only == "all" || only == "rays") bench_rays(s);
-  if (only == "all" || only == "fidelity") bench_fidelity(s, args.has("--quick"));
+  if (want("image")) bench_image(path, threads);
+  if (want("realtime")) bench_realtime(s, threads);
+  if (want("split")) bench_split(s);
+  if (want("chips")) bench_chips(s, full ? 200 : 40);
+  if (want("run")) bench_run(s, threads, 1000.0, full ? 300.0 : 100.0);
+  if (want("fidelity")) bench_fidelity(s, full);
+  if (want("accuracy")) bench_accuracy(s, full);
   return 0;
 }
 
 }  // namespace
 
 const Command kBenchCommand{
-    "bench", "speed figures as JSON lines: image time, real-time factor, ray throughput, fidelity",
-    R"(usage: sonarloop bench [SCENARIO.yaml] [--only image|realtime|rays|fidelity] [--threads N] [--quick]
+    "bench",
+    "speed and accuracy figures as JSON lines: both renderers side by side, and their ratio",
+    R"(usage: sonarloop bench [SCENARIO.yaml] [--only SECTION]... [--threads N] [--full]
 
-Prints one JSON object per line on stdout (the first describes the machine):
-  image_50m_5cm      a 50 m x 50 m image at 5 cm (1000 pings, 25 m a side): cold (scene
-                     setup, tile generation, Embree build and rendering) and warm
-  realtime_5cm_50m   pings per second at 5 cm and 50 m range on 1 thread and on all, and the
-                     real-time factor (real time = c / (2 x 50 m) pings per second)
-  ray_throughput     the renderer's rays per second against bare Embree rtcIntersect1 on the
-                     same rays, and where the renderer's time goes
-  fidelity           for each fidelity setting (rays per bin, along-track rays, seabed grid
-                     spacing): ms per ping, RMS dB error on the seabed and shadow-edge error in
-                     bins against a high-fidelity reference render of the same pings
-Without SCENARIO.yaml the embedded default scenario is used. --quick trims the fidelity sweep.
-tools/plot_bench.py turns the fidelity lines into a chart.
+Prints one JSON object per line on stdout (the first describes the machine). Each speed section
+measures the profile renderer and the ray-traced reference in the same run and prints their
+ratio ("raytrace_over_profile"): on a shared machine, compare ratios, not seconds.
+  image      a 50 m x 50 m image at 5 cm (1000 pings, 25 m a side): cold (scenario text to
+             the last ping: parse, scene, renderer, tiles or views, pings) and warm
+  realtime   pings per second at 5 cm and 50 m range on 1 thread and on all, and the
+             real-time factor (real time = c / (2 x 50 m) pings per second)
+  split      where a ping's time goes: ray tracer (generate, intersect, shade, against bare
+             Embree on the same rays); profile (march and shade, target rays, cold tiles)
+  chips      ms per 5 cm highlight and shadow chip of the resolution study (one thread)
+  run        the emulator at --rate max on a straight line (1 km for the profile renderer):
+             pings per second and start-up
+  fidelity   every fidelity setting of both renderers: ms per ping, RMS dB error on the
+             seabed, shadow-edge errors, against a ray-traced reference on a 1.25 cm grid
+  accuracy   each renderer at its default against the reference: the scenario and the four
+             seabed kinds with every sonar preset, and a line with pitch and roll
+Without SCENARIO.yaml the embedded default scenario is used. The default run takes about two
+minutes on two cores; --full takes the exhaustive fidelity grid, an 8x8-ray reference (4x4
+otherwise), more chips and pings (about 15 minutes). tools/plot_bench.py charts the fidelity
+lines.
 
 examples:
   sonarloop bench > bench.jsonl
-  sonarloop bench --only fidelity | /usr/bin/python3 tools/plot_bench.py - fidelity.png
+  sonarloop bench --only image --only realtime
+  sonarloop bench --only fidelity --full | /usr/bin/python3 tools/plot_bench.py - fidelity.png
 )",
     run_bench, 90};
 SONARLOOP_REGISTER_COMMAND(kBenchCommand);

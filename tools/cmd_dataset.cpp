@@ -251,7 +251,8 @@ int run_dataset(const std::vector<std::string>& argv) {
                          {"--seed"},
                          {"--threads"},
                          {"--sonar"},
-                         {"--levels-db"}});
+                         {"--levels-db"},
+                         {"--renderer"}});
   if (!args.positionals().empty()) {
     throw UsageError("unexpected argument '" + args.positionals()[0] + "'");
   }
@@ -292,6 +293,7 @@ int run_dataset(const std::vector<std::string>& argv) {
       is_yaml_path(sonar_arg) ? config::load_sonar(sonar_arg) : config::builtin_sonar(sonar_arg);
   if (const auto l = args.get("--levels-db")) spec.levels = parse_levels(*l);
   spec.seabeds = parse_seabeds(args.get_or("--seabed", kDefaultSeabeds));
+  spec.renderer = renderer_option(args);
 
   // an existing non-empty folder is never overwritten or mixed into
   std::error_code ec;
@@ -430,6 +432,7 @@ options:
   --sonar NAME|FILE      sonar preset or YAML file (default pailhas_strip); its bin size, pulse
                          and range are replaced per resolution
   --levels-db MIN,MAX    dB re full scale of pixels 0 and 255 (default -60,0)
+  --renderer R           profile (default: heightfield profile renderer) or raytrace (Embree)
 
 examples:
   sonarloop dataset --out out/chips --resolution-cm 5 --count 200

@@ -18,6 +18,7 @@
 #include "sim/scene/scene.h"
 #include "sim/targets/target_type.h"
 #include "tools/args.h"
+#include "tools/cli_helpers.h"
 #include "tools/commands.h"
 #include "tools/progress.h"
 #include "tools/scenario_source.h"
@@ -82,8 +83,9 @@ void extend(int& lo, int& hi, int v) {
 }
 
 int run_render(const std::vector<std::string>& argv) {
-  const Args args(argv,
-                  {{"--out"}, {"--resolution-cm"}, {"--altitude"}, {"--track"}, {"--threads"}});
+  const Args args(
+      argv,
+      {{"--out"}, {"--resolution-cm"}, {"--altitude"}, {"--track"}, {"--threads"}, {"--renderer"}});
   if (args.positionals().size() > 1) throw UsageError("expected at most one SCENARIO.yaml");
   const auto out_dir = args.get("--out");
   if (!out_dir) throw UsageError("--out DIR is required");
@@ -103,7 +105,8 @@ int run_render(const std::vector<std::string>& argv) {
   }
   const scene::Scene sc(scenario.scene);
   const render::SonarSetup setup = render::make_sonar_setup(sd, scenario.scene.water);
-  const render::PingRenderer renderer(sc, setup);
+  const auto renderer_ptr = render::make_ping_renderer(renderer_option(args), setup);
+  const render::PingRenderer& renderer = *renderer_ptr;
   const Track track = args.get("--track") ? parse_track(*args.get("--track")) : default_track(sc);
   const double altitude = args.get_double("--altitude", 0.5, 500.0)
                               .value_or(std::clamp(0.15 * sd.max_range_m, 2.0, 20.0));
@@ -250,11 +253,15 @@ int run_render(const std::vector<std::string>& argv) {
     w.end_object();
   }
   w.end_array();
+  w.field("renderer", render::renderer_name(renderer.kind()));
   w.field("render_s", render_s, 4).field("threads", threads);
   w.end_object();
   std::ofstream(dir_out / "truth.json") << w.str() << '\n';
-  std::printf("rendered %zu pings x 2 x %d bins at %.3g m in %.2f s (%d threads): %s\n", n_pings,
-              setup.bins, sd.bin_size_m, render_s, threads, dir_out.string().c_str());
+  std::printf(
+      "rendered %zu pings x 2 x %d bins at %.3g m in %.2f s (%s renderer, %d threads): "
+      "%s\n",
+      n_pings, setup.bins, sd.bin_size_m, render_s, render::renderer_name(renderer.kind()), threads,
+      dir_out.string().c_str());
   return 0;
 }
 
@@ -265,7 +272,8 @@ const Command kRenderCommand{
     R"(usage: sonarloop render [SCENARIO.yaml] --out DIR [options]
 
 Flies the scenario's sonar along a straight line at constant depth, one ping per pixel along
-track, renders every ping (ray tracing + sonar equation) and writes:
+track, renders every ping (the sonar equation over what the ping sees: the heightfield profile
+renderer by default, --renderer raytrace for the Embree reference) and writes:
   pings.xtf              the pings as XTF (2 channels, the sonar's sample type)
   waterfall.png          8-bit slant-range waterfall: port on the left, starboard on the right,
                          the last ping at the top (a north-going line reads north-up)
@@ -281,9 +289,11 @@ options:
                          within 2..20 m)
   --track N0,E0:N1,E1    the line, metres north/east (default: north-going over the targets)
   --threads N            rendering threads (default: all cores)
+  --renderer R           profile (default) or raytrace (the Embree reference)
 
 examples:
   sonarloop render --out out/render
+  sonarloop render --out out/render_rt --renderer raytrace
   sonarloop render config/seabed_rocky.yaml --out out/rocky --resolution-cm 3 --altitude 8
   sonarloop render config/default.yaml --out out/line --track -40,5:40,5
 )",

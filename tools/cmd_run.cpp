@@ -79,11 +79,10 @@ void print_final(const emulator::RunStats& s, const char* how) {
                  static_cast<unsigned long long>(s.udp_dropped));
   }
   std::fprintf(stderr,
-               "  render: %llu pings, %.2f ms mean, %.2f ms max on %d threads; views: %llu built "
-               "(max %.2f s), %llu render waits (%.2f s)\n",
+               "  render: %llu pings, %.2f ms mean, %.2f ms max on %d threads; %llu heightmap "
+               "tiles made\n",
                static_cast<unsigned long long>(s.pings_rendered), s.render_mean_ms, s.render_max_ms,
-               s.threads, static_cast<unsigned long long>(s.view_builds), s.view_build_max_s,
-               static_cast<unsigned long long>(s.view_waits), s.view_wait_total_s);
+               s.threads, static_cast<unsigned long long>(s.tiles_made));
   std::fprintf(stderr, "  cpu: %.1f %% of one core (%.2f s); start-up %.2f s\n", s.cpu_percent(),
                s.cpu_time_s, s.startup_s);
 }
@@ -102,7 +101,8 @@ int run_run(const std::vector<std::string>& argv) {
                          {"--stale-after"},
                          {"--epoch"},
                          {"--classify"},
-                         {"--contacts"}});
+                         {"--contacts"},
+                         {"--renderer"}});
   if (args.positionals().size() > 1) throw UsageError("expected at most one SCENARIO.yaml");
   const bool quiet = args.has("--quiet");
 
@@ -126,6 +126,7 @@ int run_run(const std::vector<std::string>& argv) {
   o.threads = static_cast<int>(args.get_int("--threads", 1, 256)
                                    .value_or(std::max(1u, std::thread::hardware_concurrency())));
   o.pose_from = args.get("--pose-from");
+  o.renderer = renderer_option(args);
   o.stale_after_s = args.get_double("--stale-after", 1e-3, 3600.0).value_or(2.0);
   if (args.has("--stale-after") && !o.pose_from) {
     throw UsageError("--stale-after applies to --pose-from only");
@@ -256,6 +257,9 @@ options:
                          onboard` does on the UDP stream): detect, classify with MODEL (of
                          `sonarloop train`), one JSON contact report per object
   --contacts FILE        write the contact reports there (default stderr)
+  --renderer R           profile (default: the heightfield profile renderer) or raytrace (the
+                         Embree reference; it builds views of the seabed as the vehicle goes,
+                         so a real-time run may drop pings while it does: docs/rendering.md)
 
 examples:
   sonarloop run --duration 30 --udp 127.0.0.1:5600

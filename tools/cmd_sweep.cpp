@@ -274,7 +274,8 @@ int run_sweep(const std::vector<std::string>& argv) {
                          {"--seabed"},
                          {"--non-mine"},
                          {"--sonar"},
-                         {"--no-plot", false}});
+                         {"--no-plot", false},
+                         {"--renderer"}});
   if (!args.positionals().empty()) {
     throw UsageError("unexpected argument '" + args.positionals()[0] + "'");
   }
@@ -288,6 +289,7 @@ int run_sweep(const std::vector<std::string>& argv) {
   if (const auto r = args.get("--resolutions-cm")) s.resolutions_cm = parse_resolutions_cm(*r);
   if (const auto n = args.get("--non-mine")) s.non_mine = parse_non_mine(*n);
   s.seabeds = parse_seabeds(args.get_or("--seabed", kDefaultSeabeds));
+  s.renderer = renderer_option(args);
   const std::string sonar_arg = args.get_or("--sonar", std::string(config::kDefaultSonarPreset));
   const std::string ext = fs::path(sonar_arg).extension().string();
   s.sonar = ext == ".yaml" || ext == ".yml" ? config::load_sonar(sonar_arg)
@@ -399,6 +401,7 @@ options:
   --non-mine LIST      fig13's non-mine shapes (default large_cuboid,hemisphere,box)
   --sonar NAME|FILE    sonar preset or YAML (default pailhas_strip; bin and pulse set per R)
   --no-plot            do not run the chart script
+  --renderer R         profile (default: heightfield profile renderer) or raytrace (Embree)
 
 Ctrl-C stops after the chip in progress; the CSV files keep every condition scored so far.
 Same --seed and counts give the same counts and rates on any --threads (times differ).

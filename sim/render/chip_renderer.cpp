@@ -89,8 +89,7 @@ scene::SceneDesc base_seabed_desc(std::uint64_t seed, const char* sediment) {
   return d;
 }
 
-// World z (down) of the highest and the deepest heightmap point in `region`, whose tiles the
-// caller has made (by building a view of it).
+// World z (down) of the highest and the deepest heightmap point in `region` (making its tiles).
 std::pair<double, double> seabed_depth_range(const seabed::SeabedModel& seabed,
                                              const scene::Box2& region) {
   const double d = seabed.spacing_m();
@@ -180,21 +179,10 @@ ChipParams chip_params(const ChipDatasetSpec& spec, std::uint64_t index) {
   return p;
 }
 
-// One seabed kind: the shared seabed, a scene on it for the renderers' tables, and a renderer
-// per resolution.
-//
-// Renderer sharing: building a PingRenderer tabulates the bottom backscatter of every sediment
-// (about 30 ms), too slow per chip. Each chip has its own Scene (its target) on the shared
-// seabed, and is rendered by the kind's renderer, built once on `scene` (the same seabed and a
-// target of the same material as every chip's target 0). The renderer uses its own scene only
-// for the per-target Lambert μ (from the material: the same) and for the seabed depth under the
-// sonar when the nadir ray misses the view (the same seabed); all rays go into the chip's view.
-// chip_renderer_test checks that chips match a renderer built on the chip's own scene.
+// One seabed kind: the shared seabed all its chips' scenes are placed on.
 struct ChipRenderer::Kind {
   scene::SceneDesc desc;  // the shared seabed's scene, no targets
   std::shared_ptr<const seabed::SeabedModel> seabed;
-  std::unique_ptr<scene::Scene> scene;                   // desc + one default target
-  std::vector<std::unique_ptr<PingRenderer>> renderers;  // per resolution
 };
 
 ChipRenderer::ChipRenderer(ChipDatasetSpec spec) : spec_(std::move(spec)) {
@@ -242,6 +230,7 @@ ChipRenderer::ChipRenderer(ChipDatasetSpec spec) : spec_(std::move(spec)) {
     sd.chirp_bandwidth_hz = 0.0;
     sd.max_range_m = max_range;
     sonars_.push_back(make_sonar_setup(sd, spec_.seabeds[0].desc.water));
+    renderers_.push_back(make_ping_renderer(spec_.renderer, sonars_.back()));
   }
   seabed::SeabedOptions options;
   options.tile_size = kSeabedTileSize;
@@ -262,12 +251,6 @@ ChipRenderer::ChipRenderer(ChipDatasetSpec spec) : spec_(std::move(spec)) {
                                   "'; all kinds must share one water column");
     }
     k->seabed = std::make_shared<const seabed::SeabedModel>(k->desc, options);
-    scene::SceneDesc with_target = k->desc;
-    with_target.targets = {scene::TargetDesc{}};
-    with_target.targets[0].name = "target";
-    k->scene = std::make_unique<scene::Scene>(with_target, k->seabed);
-    for (const SonarSetup& setup : sonars_)
-      k->renderers.push_back(std::make_unique<PingRenderer>(*k->scene, setup));
     kinds_.push_back(std::move(k));
   }
 }
@@ -352,21 +335,24 @@ ChipImage ChipRenderer::render(std::uint64_t index, int resolution) const {
       region.max = region.max.cwiseMax(q);
     }
   }
-  const auto view = sc.view(region, 1);
-  std::unique_ptr<PingRenderer> own_renderer;
-  if (!spec_.share_ping_renderers) own_renderer = std::make_unique<PingRenderer>(sc, setup);
-  const PingRenderer& renderer =
-      own_renderer ? *own_renderer : *kind.renderers[static_cast<std::size_t>(resolution)];
+  const PingRenderer& renderer = *renderers_[static_cast<std::size_t>(resolution)];
+  const bool raytrace = renderer.kind() == RendererKind::kRaytrace;
 
-  // The renderer fans its rays where a flat seabed at the nadir altitude a_n would put the
+  // The ray tracer fans its rays where a flat seabed at the nadir altitude a_n would put the
   // window's ranges: a ray of depression δ is meant for slant range a_n / sin δ. The view's
   // seabed lies at other depths (relief, textures) and holds taller things (the target,
-  // rocks), so the fan is widened to every depression that can land in the window: from its
-  // near edge on the deepest seabed of the view, to its far edge on the highest point.
-  const auto [seabed_high, seabed_deep] = seabed_depth_range(*kind.seabed, view->region());
-  const double depth_high = std::min(seabed_high, placed.bounds_W.min().z());
-  const double d_deep = std::max(seabed_deep - sonar_z, 1e-3);
-  const double d_high = std::max(depth_high - sonar_z, kMinClearanceFraction * a);
+  // rocks), so its fan is widened to every depression that can land in the window: from its
+  // near edge on the deepest seabed of the view, to its far edge on the highest point. (The
+  // profile renderer marches the ground itself and lays its target rays out over the target.)
+  double d_deep = 0.0, d_high = 0.0;
+  if (raytrace) {
+    const scene::Box2 clipped{region.min.cwiseMax(kind.seabed->extent_min()),
+                              region.max.cwiseMin(kind.seabed->extent_max())};
+    const auto [seabed_high, seabed_deep] = seabed_depth_range(*kind.seabed, clipped);
+    const double depth_high = std::min(seabed_high, placed.bounds_W.min().z());
+    d_deep = std::max(seabed_deep - sonar_z, 1e-3);
+    d_high = std::max(depth_high - sonar_z, kMinClearanceFraction * a);
+  }
 
   // the pings, one per row
   const std::uint64_t seed = hash_keys(spec_.seed, RngStream::kDataset, index, kKeyRender,
@@ -382,17 +368,28 @@ ChipImage ChipRenderer::render(std::uint64_t index, int resolution) const {
     const Vec2 xy = closest + (k - centre_row + p.along_offset) * res * along;
     pose.position_W = Vec3(xy.x(), xy.y(), sonar_z);
     pose.yaw = p.track_heading_deg * kDegToRad;
-    // a_n: the seabed depth below the sonar, as the renderer finds it (its nadir ray misses
-    // the chip's view and falls back to the heightmap)
-    const double a_n = sc.seabed_z(xy.x(), xy.y()) - sonar_z;
     RenderOptions options;
     options.truth = true;
     options.side_mask = 1 << p.side;
-    // a hair inside the window, so that floor() in the renderer cannot step back a bin
-    options.range_min_m = std::min(r_lo + 1e-6 * res, a_n * r_lo / d_deep);
-    // the renderer fans 5 % beyond range_max_m
-    options.range_max_m = std::max(r_hi, a_n * r_hi / d_high / 1.05);
-    renderer.render(*view, pose, seed, static_cast<std::uint64_t>(k), options, scratch, lines);
+    options.shadow_margin_m = kViewNearMargin_m;
+    if (raytrace) {
+      // a_n: the seabed depth below the sonar, as the ray tracer finds it (its nadir ray misses
+      // the chip's view and falls back to the heightmap)
+      const double a_n = sc.seabed_z(xy.x(), xy.y()) - sonar_z;
+      options.view_region = region;
+      // a hair inside the window, so that floor() in the renderer cannot step back a bin
+      options.range_min_m = std::min(r_lo + 1e-6 * res, a_n * r_lo / d_deep);
+      // the renderer fans 5 % beyond range_max_m
+      options.range_max_m = std::max(r_hi, a_n * r_hi / d_high / 1.05);
+    } else {
+      // the sonar's height above the large-scale seabed below it: the profile renderer needs it
+      // only to lay out target rays, and this needs no heightmap tile at nadir
+      options.nadir_altitude_m =
+          sc.seabed().water_depth_m() - sc.seabed().base_elevation(xy.x(), xy.y()) - sonar_z;
+      options.range_min_m = r_lo + 1e-6 * res;
+      options.range_max_m = r_hi;
+    }
+    renderer.render(sc, pose, seed, static_cast<std::uint64_t>(k), options, scratch, lines);
     const std::vector<float>& line = p.side == 1 ? lines.stbd : lines.port;
     const int row = p.side == 1 ? chip.rows - 1 - k : k;
     for (int c = 0; c < chip.cols; ++c) {

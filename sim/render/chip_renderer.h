@@ -35,15 +35,17 @@
 // dataset. Speckle and noise are on, as on a real sonar.
 //
 // Efficiency ("only what the chip needs"): one large lazily tiled seabed per seabed kind is
-// built once and shared by all chips (Scene's shared-seabed constructor); a chip renders only
-// its own rows' pings, only its range window (plus kChipRangeMarginBins either side) and only
-// the side it looks to, from an Embree view of just the ground those rays reach. Chips are
-// placed in blocks of kChipsPerBlock consecutive indices within a kBlockSize_m square (a random
-// square of the seabed per block), so that neighbouring chips, rendered at the same time, reuse
-// the seabed's noise tiles instead of synthesising new ones far apart.
+// built once and shared by all chips (Scene's shared-seabed constructor), and one ping renderer
+// per resolution; a chip renders only its own rows' pings, only its range window (plus
+// kChipRangeMarginBins either side) and only the side it looks to. The profile renderer marches
+// each row's ground line from kViewNearMargin_m before the window and traces the chip's one
+// target; the ray tracer builds an Embree view of just the ground the window's rays reach.
+// Chips are placed in blocks of kChipsPerBlock consecutive indices within a kBlockSize_m square
+// (a random square of the seabed per block), so that neighbouring chips, rendered at the same
+// time, reuse the seabed's heightmap tiles instead of synthesising new ones far apart.
 //
 // Limits: obstacles more than kViewNearMargin_m (ground) nearer to the sonar than the chip's
-// range window are not in the view, so the shadows they would cast into the chip are missing
+// range window are not considered, so the shadows they would cast into the chip are missing
 // (targets and rocks inside and just before the window cast theirs).
 #include <cstdint>
 #include <functional>
@@ -128,10 +130,9 @@ struct ChipDatasetSpec {
   // (pulse_length_s = chirp_bandwidth_hz = 0), and max_range_m large enough for every chip.
   SonarDesc sonar;
   ChipLevels levels;
-  // Render every chip with the ping renderer of its seabed kind and resolution, built once
-  // (chip_renderer.cpp explains why that is exact). false: build one per chip on the chip's own
-  // scene, ~30 ms slower per chip; for tests.
-  bool share_ping_renderers = true;
+  // The ping renderer (ping_renderer.h): the heightfield profile renderer by default, the
+  // ray-traced reference on request.
+  RendererKind renderer = RendererKind::kProfile;
 };
 
 // What chip `index` shows: a pure function of (spec, index), whatever the resolution.
@@ -181,7 +182,7 @@ struct ChipImage {
 };
 
 // Renders chips of a dataset. Building it makes one shared seabed per seabed kind and one ping
-// renderer per (seabed kind, resolution): about 0.1-0.5 s. const methods are thread-safe.
+// renderer per resolution: about 0.1-0.5 s. const methods are thread-safe.
 class ChipRenderer {
  public:
   // Throws std::invalid_argument for an empty class, seabed or resolution list, a resolution
@@ -204,8 +205,9 @@ class ChipRenderer {
  private:
   struct Kind;
   ChipDatasetSpec spec_;
-  std::vector<SonarSetup> sonars_;            // per resolution
-  std::vector<std::unique_ptr<Kind>> kinds_;  // per seabed kind
+  std::vector<SonarSetup> sonars_;                        // per resolution
+  std::vector<std::unique_ptr<PingRenderer>> renderers_;  // per resolution
+  std::vector<std::unique_ptr<Kind>> kinds_;              // per seabed kind
 };
 
 // One chip to render: an index at a resolution slot.

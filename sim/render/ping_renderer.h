@@ -1,43 +1,48 @@
 #pragma once
-// The ping renderer (Pailhas et al. 2010, Sec. 2.3): pseudo ray tracing plus the energetic sonar
-// equation. For one ping it fans rays from the transducer across the vertical plane of each side
-// and across the along-track beam, intersects them with the scene (Embree), and adds each hit's
-// echo intensity to the range bin of its slant range:
+// The ping renderer interface (Pailhas et al. 2010, Sec. 2.3): (scene, sonar, pose, seed, ping
+// index) -> one port and one starboard line of echo intensity per slant-range bin, from the
+// energetic sonar equation
 //
-//   I = SL · G(ψ, δ) · σ · dA / r⁴ · 10^(-2αr/10)      (linear form of SL − 2TL + TS + beam)
+//   I = SL · G(ψ, δ) · σ · dA / r⁴ · 10^(-2αr/10)
 //
-// with G the two-way beam pattern (acoustics/beam_pattern.h), σ the seabed's backscattering
-// cross-section per unit area per steradian at the LOCAL grazing angle from the hit normal
-// (APL-UW or Lambert, acoustics/backscatter_table.h) or a target facet's Lambert response
-// μ·cos²θ with μ from its impedance (acoustics/target_scattering.h), and dA = r²·dΩ/cos θ the
-// area a ray of solid angle dΩ illuminates. A ray's echo is spread over the slant ranges its
-// tube spans on the surface it hits, Δr = r·dδ·tan θ (dδ its vertical width, θ the incidence),
-// so a slope facing away from the sonar stays lit rather than dropping bins between rays.
-// Shadows fall out of visibility: a ray stopped by a
-// target never reaches the seabed behind it. Thermal noise (Mellen, in the receiver band, less
-// the directivity index) is added, the line is blurred to the pulse's range resolution, and
-// fully developed speckle multiplies each bin (exponential intensity).
+// summed over every surface element the ping sees (echo_model.h has the shared terms). Two
+// renderers implement it; both share every acoustic term, the along-track sampling, the ray fan
+// laid out for the targets, the noise, the pulse blur and the speckle, and differ only in how they
+// find what the ping sees:
 //
-// Ray fan. Rays are placed where a flat seabed at the measured nadir altitude a would put
-// `rays_per_bin` of them in every range bin (depression δ = asin(a/r)), then tilted with the
-// vehicle's roll and pitch so they stay in the sonar's beam plane. Each ray carries its own solid
-// angle, so uneven terrain changes how many rays a bin gets but not the energy it receives.
-// Default fidelity rule ("enough for the pixel size and no more"): rays 2 per bin in range and
-// 2 per along-track resolution cell (strip) or per bin-size across the beam footprint at
-// maximum range (beam, at most 32): about half a pixel apart on the ground in both directions.
+//   profile   (profile_renderer.h, the default): the seabed is a heightfield, so each beam plane
+//             cuts it along a ground line, marched outwards from nadir with a running horizon
+//             (shadows in O(samples)); only the targets are ray traced (a small Embree BVH), and
+//             only in the pings whose planes meet them.
+//   raytrace  (raytrace_renderer.h, the reference): rays fanned across each beam plane are traced
+//             through one Embree scene of the seabed grid and the targets.
 //
-// Allocation: none per ping; PingScratch holds every buffer, sized on first use.
+// docs/rendering.md compares them (speed against accuracy) and says when to use which.
+//
+// Usage: make one renderer per sonar (make_ping_renderer), share it between threads (render() is
+// const and thread-safe) and give each thread its own PingScratch. The same scene, sonar, pose,
+// seed, ping index and options give byte-identical lines on any thread, in any order.
 #include <embree3/rtcore.h>
 
 #include <cstdint>
 #include <limits>
+#include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "sim/frames.h"
 #include "sim/render/sonar.h"
 #include "sim/scene/scene.h"
+#include "sim/seabed/height_sampler.h"
 
 namespace sonarloop::render {
+
+enum class RendererKind { kProfile, kRaytrace };
+
+const char* renderer_name(RendererKind kind);  // "profile", "raytrace"
+// Parses "profile" or "raytrace"; nullopt otherwise.
+std::optional<RendererKind> parse_renderer(const std::string& name);
 
 // One ping: intensity per slant-range bin, bin k covering [k, k+1)·bin_size_m.
 struct PingLines {
@@ -46,7 +51,7 @@ struct PingLines {
   double altitude_m = std::numeric_limits<double>::quiet_NaN();  // measured at nadir
 };
 
-// What a ping saw of each target, from the rays themselves (for truth files and tests).
+// What a ping saw of each target (for truth files and tests).
 struct TargetTrace {
   int target = -1;           // PlacedTarget::index
   int side = 0;              // 0 port, 1 starboard
@@ -58,12 +63,24 @@ struct TargetTrace {
 };
 
 struct RenderOptions {
-  bool truth = false;        // fill PingScratch::traces (extra rays behind targets)
+  bool truth = false;        // fill PingScratch::traces
   bool speckle = true;       // AND-ed with SonarDesc::speckle
   bool noise = true;         // AND-ed with SonarDesc::noise
   double range_min_m = 0.0;  // only bins overlapping [range_min_m, range_max_m] are rendered
   double range_max_m = std::numeric_limits<double>::infinity();
   int side_mask = 3;  // bit 0 port, bit 1 starboard
+  // Ground (horizontal distance) before the range window whose relief and targets can cast
+  // shadows into it. Infinite (default): everything from nadir. A chip uses a few metres: the
+  // profile renderer then marches only from there, the ray tracer's view starts there.
+  double shadow_margin_m = std::numeric_limits<double>::infinity();
+  // The sonar's height above the seabed straight below it, if the caller knows it (a chip's
+  // geometry fixes it); NaN (default): measured (a ray or the heightmap below the sonar).
+  double nadir_altitude_m = std::numeric_limits<double>::quiet_NaN();
+  // raytrace only: the region (north/east) its Embree view covers. Pings given the same region
+  // share one view; the region must hold the ground the ping reaches, and for byte-identical
+  // output must depend only on the ping (not on what else was rendered). Default: the ground
+  // the ping reaches, snapped outwards to a fixed grid (raytrace_renderer.h).
+  std::optional<scene::Box2> view_region;
 };
 
 // Per ray of a ping, what shading needs besides the Embree hit.
@@ -74,64 +91,94 @@ struct RayMeta {
   std::uint8_t side = 0;          // 0 port, 1 starboard
 };
 
-struct PingScratch {
-  std::vector<double> accum[2];
-  std::vector<float> ray_edge;      // sin(world depression) at the vertical ray edges
-  std::vector<float> along;         // along-track angle or offset per along ray
-  std::vector<float> along_weight;  // along-track pattern × width
-  std::vector<RTCRayHit> rays;      // the ping's rays (view-local coordinates), then their hits
-  std::vector<RayMeta> meta;
-  std::vector<TargetTrace> traces;
-  std::uint64_t rays_cast = 0;  // rays intersected in the last ping (incl. truth rays)
+// The heightfield march of one beam plane (profile renderer): per sample, what the horizon and
+// target tests need. Sized once, reused.
+struct ProfileLineScratch {
+  std::vector<float> edge_tan;  // target rays: in-plane tan(depression) of each tube edge
+  std::vector<float> ray_tan;   // target rays: in-plane tan(depression) of the ray
+  std::vector<float> ray_s;     // target rays: in-plane ground distance of the hit
+  std::vector<float> hit_r;     // target rays: hit range (inf: no hit)
+  std::vector<float> horizon;   // running minimum tan(depression) after each march sample
 };
 
-struct Fidelity {
-  int rays_per_bin = 2;
-  int along_track_rays = 2;
+// Buffers of one rendering thread, sized on first use (no allocation per ping afterwards).
+struct PingScratch {
+  std::vector<double> accum[2];
+  std::vector<float> ray_edge;  // sin(world depression) at the vertical ray edges
+  std::vector<RTCRayHit> rays;  // the ping's rays (view-local coordinates), then their hits
+  std::vector<RayMeta> meta;
+  std::vector<TargetTrace> traces;
+  ProfileLineScratch line;
+  seabed::HeightSampler heights;  // profile: heightmap tiles of the scene being rendered
+  std::uint64_t rays_cast = 0;    // rays intersected in the last ping (incl. truth rays)
+  std::uint64_t samples = 0;      // profile: heightfield samples marched in the last ping
 };
+
+// Fidelity knobs ("enough for the pixel size and no more", docs/rendering.md).
+struct Fidelity {
+  int rays_per_bin = 2;      // vertical rays per range bin (raytrace; profile: target rays)
+  int along_track_rays = 2;  // beam planes (or rays) across the horizontal beam or strip
+  // profile: read the coarsest heightfield level (spacing grid·2^L) whose spacing is at most
+  // this (the scene's own grid if it is coarser already), and march at this fraction of that
+  // level's spacing, never more than half a range bin
+  double heightfield_spacing_m = 0.0;
+  double march_step_per_spacing = 0.5;
+};
+
+// The default fidelity rule: two vertical rays per bin and two along-track samples per
+// along-track resolution cell (strip) or per bin size across the beam's footprint at maximum
+// range (beam, at most 32); the profile reads the coarsest heightfield level no coarser than
+// half a bin and marches at half its spacing. SonarDesc::rays_per_bin and along_track_rays
+// override the first two.
+Fidelity default_fidelity(const SonarSetup& sonar);
+
+// The heightfield level and march step the profile renderer uses with `fidelity` on a seabed
+// whose finest grid is grid_spacing_m, for a sonar of bin_size_m.
+struct MarchPlan {
+  int level = 0;
+  double spacing_m = 0.0;  // grid_spacing_m · 2^level
+  double step_m = 0.0;
+};
+MarchPlan march_plan(const Fidelity& fidelity, double grid_spacing_m, double bin_size_m);
+
+class EchoModel;
 
 class PingRenderer {
  public:
-  PingRenderer(const scene::Scene& scene, const SonarSetup& sonar);
+  virtual ~PingRenderer();
+  PingRenderer(const PingRenderer&) = delete;
+  PingRenderer& operator=(const PingRenderer&) = delete;
 
+  virtual RendererKind kind() const = 0;
   const SonarSetup& sonar() const { return sonar_; }
   const Fidelity& fidelity() const { return fidelity_; }
 
-  // Renders the ping emitted from `pose`. Randomness (speckle, noise) comes from
-  // (seed, ping_index) only, so a ping is the same whichever thread renders it.
-  // `view` must cover the swath (see swath_region()).
-  void render(const scene::SceneView& view, const Pose& pose, std::uint64_t seed,
-              std::uint64_t ping_index, const RenderOptions& options, PingScratch& scratch,
-              PingLines& out) const;
+  // Renders the ping emitted from `pose` over `scene`. Randomness (speckle, noise) comes from
+  // (seed, ping_index) only. scratch.traces holds the targets seen when options.truth is set.
+  virtual void render(const scene::Scene& scene, const Pose& pose, std::uint64_t seed,
+                      std::uint64_t ping_index, const RenderOptions& options, PingScratch& scratch,
+                      PingLines& out) const = 0;
+
+  // Makes, on the calling thread, what a ping from `pose` will read (profile: the heightmap tiles
+  // along its ground lines and the target BVH; raytrace: its Embree view), so that rendering it
+  // later does not wait. Optional: render() makes whatever is missing itself.
+  virtual void prepare(const scene::Scene& scene, const Pose& pose, const RenderOptions& options,
+                       PingScratch& scratch) const = 0;
 
   // The rectangle (north/east) a ping from `pose` can reach: max range around the sonar.
   scene::Box2 swath_region(const Pose& pose) const;
 
-  // The three phases of render(), public so that `sonarloop bench` can time Embree alone on
-  // exactly the renderer's rays: generate_rays fills scratch.rays/meta (returns the nadir
-  // altitude, NaN if the sonar is out of the water), intersect traces them (Embree only), and
-  // shade turns hits into intensity per bin and finishes the lines.
-  double generate_rays(const scene::SceneView& view, const Pose& pose, const RenderOptions& options,
-                       PingScratch& scratch) const;
-  static void intersect(const scene::SceneView& view, PingScratch& scratch);
-  void shade(const scene::SceneView& view, std::uint64_t seed, std::uint64_t ping_index,
-             const RenderOptions& options, double altitude, PingScratch& scratch,
-             PingLines& out) const;
+ protected:
+  PingRenderer(const SonarSetup& sonar, const Fidelity& fidelity);
+  const EchoModel& echo() const { return *echo_; }
 
- private:
-  void generate_side(const scene::SceneView& view, const Pose& pose, int side, double altitude,
-                     const RenderOptions& options, PingScratch& scratch) const;
-
-  const scene::Scene& scene_;
   SonarSetup sonar_;
   Fidelity fidelity_;
-  std::vector<acoustics::BackscatterTable> seabed_sigma_;  // per SedimentId
-  std::vector<double> target_mu_;                          // per target index
-  double source_level_lin_ = 0.0;
-  double noise_lin_ = 0.0;  // mean noise intensity per bin
+  std::unique_ptr<EchoModel> echo_;
 };
 
-// The default fidelity rule (see the header comment), for a sonar and a seabed grid spacing.
-Fidelity default_fidelity(const SonarSetup& sonar);
+// A renderer of `kind` for `sonar`, with the default fidelity rule unless `fidelity` is given.
+std::unique_ptr<PingRenderer> make_ping_renderer(RendererKind kind, const SonarSetup& sonar,
+                                                 std::optional<Fidelity> fidelity = std::nullopt);
 
 }  // namespace sonarloop::render

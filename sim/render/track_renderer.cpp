@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <exception>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -12,34 +14,31 @@ void render_track(const scene::Scene& scene, const PingRenderer& renderer,
                   const TrackRenderOptions& options, const PingSink& sink,
                   const std::function<void(double)>& on_progress) {
   const int threads = std::max(1, options.threads);
+  const std::size_t block = std::max<std::size_t>(1, options.block_pings);
+  // a worker prepares the ping this far ahead of the one it renders
+  const std::size_t ahead = 4 * static_cast<std::size_t>(threads);
   std::vector<PingScratch> scratch(static_cast<std::size_t>(threads));
-  std::vector<PingLines> lines;
-  std::vector<std::vector<TargetTrace>> traces;
-  std::size_t begin = 0;
-  while (begin < poses.size()) {
-    // the chunk: consecutive pings near the first one
-    std::size_t end = begin + 1;
-    const Vec2 start = poses[begin].position_W.head<2>();
-    while (end < poses.size() &&
-           (poses[end].position_W.head<2>() - start).norm() <= options.chunk_length_m) {
-      ++end;
-    }
-    scene::Box2 region = renderer.swath_region(poses[begin]);
-    for (std::size_t k = begin + 1; k < end; ++k) {
-      const scene::Box2 r = renderer.swath_region(poses[k]);
-      region.min = region.min.cwiseMin(r.min);
-      region.max = region.max.cwiseMax(r.max);
-    }
-    const auto view = scene.view(region, threads);
-    const std::size_t n = end - begin;
-    lines.resize(n);
-    traces.resize(n);
+  std::vector<PingLines> lines(block);
+  std::vector<std::vector<TargetTrace>> traces(block);
+  for (std::size_t begin = 0; begin < poses.size(); begin += block) {
+    const std::size_t n = std::min(block, poses.size() - begin);
     std::atomic<std::size_t> next{0};
+    std::exception_ptr error;
+    std::mutex error_mu;
     auto work = [&](std::size_t worker) {
-      for (std::size_t k = next++; k < n; k = next++) {
-        renderer.render(*view, poses[begin + k], seed, options.first_ping_index + begin + k,
-                        options.ping, scratch[worker], lines[k]);
-        traces[k] = scratch[worker].traces;
+      try {
+        for (std::size_t k = next++; k < n; k = next++) {
+          const std::size_t p = begin + k;
+          if (p + ahead < poses.size())
+            renderer.prepare(scene, poses[p + ahead], options.ping, scratch[worker]);
+          renderer.render(scene, poses[p], seed, options.first_ping_index + p, options.ping,
+                          scratch[worker], lines[k]);
+          traces[k] = scratch[worker].traces;
+        }
+      } catch (...) {
+        const std::lock_guard lock(error_mu);
+        if (!error) error = std::current_exception();
+        next = n;
       }
     };
     std::vector<std::thread> pool;
@@ -48,10 +47,11 @@ void render_track(const scene::Scene& scene, const PingRenderer& renderer,
     work(0);
     for (auto& th : pool)
       th.join();
+    if (error) std::rethrow_exception(error);
     for (std::size_t k = 0; k < n; ++k)
       sink(begin + k, lines[k], traces[k]);
-    begin = end;
-    if (on_progress) on_progress(static_cast<double>(begin) / static_cast<double>(poses.size()));
+    if (on_progress)
+      on_progress(static_cast<double>(begin + n) / static_cast<double>(poses.size()));
   }
 }
 

@@ -1,9 +1,10 @@
 #pragma once
-// Rendering a sequence of pings (a straight survey line, a dataset's few pings): builds Embree
-// views over chunks of consecutive pings, so that only the swath the pings can see is ever
-// generated and compiled, and renders each chunk's pings on several threads. Every ping is a
-// pure function of (scene, sonar, pose, seed, ping index), so the output does not depend on the
-// number of threads.
+// Rendering a sequence of pings (a straight survey line, a bench's image): renders the pings on
+// several threads in blocks of consecutive pings and hands them to a sink in order. Each worker
+// prepares the ping a few ahead of the one it renders (PingRenderer::prepare: heightmap tiles, or
+// the ray tracer's view), so that the scene is made ahead of the pings that read it. Every ping
+// is a pure function of (scene, sonar, pose, seed, ping index), so the output does not depend on
+// the number of threads.
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -15,8 +16,7 @@ namespace sonarloop::render {
 struct TrackRenderOptions {
   RenderOptions ping;  // per-ping options (truth, range window, ...)
   int threads = 1;
-  double chunk_length_m = 20.0;  // pings whose positions lie within this of a chunk's first ping
-                                 // share one scene view
+  std::size_t block_pings = 64;        // pings rendered between two hand-overs to the sink
   std::uint64_t first_ping_index = 0;  // ping index of poses[0] (randomness key)
 };
 

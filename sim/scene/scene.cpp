@@ -1,6 +1,7 @@
 #include "sim/scene/scene.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -16,6 +17,9 @@ namespace sonarloop::scene {
 namespace {
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
+
+// Scene ids: a counter, not randomness (ids never reach an output).
+std::atomic<std::uint64_t> g_next_scene_uid{1};
 
 PlacedTarget place_target(const TargetDesc& t, int index, const seabed::SeabedModel& seabed,
                           double water_depth_m) {
@@ -44,7 +48,9 @@ bool overlaps(const Eigen::AlignedBox3d& b, const Box2& r) {
 }  // namespace
 
 Scene::Scene(const SceneDesc& desc, seabed::SeabedOptions seabed_options)
-    : desc_(desc), seabed_(std::make_shared<seabed::SeabedModel>(desc, seabed_options)) {
+    : desc_(desc),
+      uid_(g_next_scene_uid++),
+      seabed_(std::make_shared<seabed::SeabedModel>(desc, seabed_options)) {
   for (std::size_t k = 0; k < desc_.targets.size(); ++k) {
     targets_.push_back(
         place_target(desc_.targets[k], static_cast<int>(k), *seabed_, desc_.water.depth_m));
@@ -52,7 +58,7 @@ Scene::Scene(const SceneDesc& desc, seabed::SeabedOptions seabed_options)
 }
 
 Scene::Scene(const SceneDesc& desc, std::shared_ptr<const seabed::SeabedModel> seabed)
-    : desc_(desc), seabed_(std::move(seabed)) {
+    : desc_(desc), uid_(g_next_scene_uid++), seabed_(std::move(seabed)) {
   if (!seabed_) throw std::invalid_argument("Scene: the shared seabed is null");
   if (seabed_->water_depth_m() != desc_.water.depth_m) {
     throw std::invalid_argument("Scene: the shared seabed was built for water depth " +
@@ -63,6 +69,11 @@ Scene::Scene(const SceneDesc& desc, std::shared_ptr<const seabed::SeabedModel> s
     targets_.push_back(
         place_target(desc_.targets[k], static_cast<int>(k), *seabed_, desc_.water.depth_m));
   }
+}
+
+const TargetBvh& Scene::target_bvh() const {
+  std::call_once(bvh_once_, [this] { bvh_ = std::make_unique<TargetBvh>(targets_); });
+  return *bvh_;
 }
 
 double Scene::seabed_z(double x, double y) const {
@@ -144,24 +155,9 @@ std::shared_ptr<const SceneView> Scene::view(const Box2& region, int threads) co
   // targets whose bounds reach into the region
   for (const PlacedTarget& p : targets_) {
     if (!overlaps(p.bounds_W, r)) continue;
-    std::vector<float> verts(3 * (p.mesh_T.vertices.size() + 1), 0.0f);
-    for (std::size_t k = 0; k < p.mesh_T.vertices.size(); ++k) {
-      const Vec3 w = p.X_WT * p.mesh_T.vertices[k].cast<double>() - v->origin_W_;
-      for (int c = 0; c < 3; ++c)
-        verts[3 * k + static_cast<std::size_t>(c)] = static_cast<float>(w[c]);
-    }
+    std::vector<float> verts;
     std::vector<std::uint32_t> idx;
-    idx.reserve(3 * p.mesh_T.triangles.size());
-    for (const auto& tri : p.mesh_T.triangles)
-      idx.insert(idx.end(), tri.begin(), tri.end());
-    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, verts.data(), 0,
-                               3 * sizeof(float), p.mesh_T.vertices.size());
-    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, idx.data(), 0,
-                               3 * sizeof(std::uint32_t), p.mesh_T.triangles.size());
-    rtcCommitGeometry(geom);
-    rtcAttachGeometryByID(v->scene_, geom, geom_id++);
-    rtcReleaseGeometry(geom);
+    attach_target_mesh(v->scene_, geom_id++, p, v->origin_W_, verts, idx);
     v->target_geoms_.push_back(p.index);
     v->target_vertices_.push_back(std::move(verts));
     v->target_indices_.push_back(std::move(idx));
@@ -210,22 +206,7 @@ Hit SceneView::intersect(const Vec3& origin_W, const Vec3& dir_W, double t_max_m
   const double len = dir_W.norm();
   if (!(len > 0.0)) return hit;
   const Vec3 dir = dir_W / len;
-  const Vec3 o = origin_W - origin_W_;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  RTCRayHit rh{};
-  rh.ray.org_x = static_cast<float>(o.x());
-  rh.ray.org_y = static_cast<float>(o.y());
-  rh.ray.org_z = static_cast<float>(o.z());
-  rh.ray.dir_x = static_cast<float>(dir.x());
-  rh.ray.dir_y = static_cast<float>(dir.y());
-  rh.ray.dir_z = static_cast<float>(dir.z());
-  rh.ray.tnear = 0.0f;
-  rh.ray.tfar = static_cast<float>(t_max_m);
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene_, &context, &rh);
+  const RTCRayHit rh = intersect_one(scene_, origin_W - origin_W_, dir, 0.0, t_max_m);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
   hit.distance_m = rh.ray.tfar;
   hit.point_W = origin_W + hit.distance_m * dir;

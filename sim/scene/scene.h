@@ -2,11 +2,13 @@
 // The compiled scene: seabed and targets of a SceneDesc (scene_desc.h), and Embree views of it.
 //
 // Scene is cheap to make and immutable: it holds the lazily tiled seabed (seabed_model.h) and
-// the targets placed on it. No terrain is generated and no BVH built until a region is asked
-// for: Scene::view(region) makes the heightmap tiles covering that region and compiles them,
-// with the targets inside it, into one Embree scene (the seabed as Embree grid geometry, one
-// grid per heightmap tile; targets as triangle meshes). A view is immutable and thread-safe to
-// query; views of different regions can coexist (a moving vehicle builds the next one ahead).
+// the targets placed on it. No terrain is generated and no BVH built until asked for. The
+// profile renderer reads heights from the tiles and traces only the targets (target_bvh());
+// the ray-traced reference renderer asks for a SceneView: Scene::view(region) makes the
+// heightmap tiles covering that region and compiles them, with the targets inside it, into
+// one Embree scene (the seabed as Embree grid geometry, one grid per heightmap tile; targets as
+// triangle meshes). A view is immutable and thread-safe to query; views of different regions
+// can coexist.
 //
 // Coordinates: world frame W (frames.h: NED, z down). Inside a view, Embree works in
 // single precision relative to the view's local origin (its centre) to keep centimetre
@@ -14,10 +16,12 @@
 #include <embree3/rtcore.h>
 
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "sim/frames.h"
 #include "sim/scene/scene_desc.h"
+#include "sim/scene/target_bvh.h"
 #include "sim/seabed/seabed_model.h"
 #include "sim/targets/mesh.h"
 
@@ -66,6 +70,13 @@ class Scene {
   const SceneDesc& desc() const { return desc_; }
   const seabed::SeabedModel& seabed() const { return *seabed_; }
   const std::vector<PlacedTarget>& targets() const { return targets_; }
+  // A process-unique id of this scene (never reused): caches keyed by scene use it, since a
+  // later scene may live at the address of an earlier one.
+  std::uint64_t uid() const { return uid_; }
+
+  // The targets alone in one small Embree scene (target_bvh.h), built on first use
+  // (thread-safe).
+  const TargetBvh& target_bvh() const;
 
   // World z (down) of the seabed surface at (x, y) (bilinear heightmap).
   double seabed_z(double x, double y) const;
@@ -76,8 +87,11 @@ class Scene {
 
  private:
   SceneDesc desc_;
+  std::uint64_t uid_;
   std::shared_ptr<const seabed::SeabedModel> seabed_;
   std::vector<PlacedTarget> targets_;
+  mutable std::once_flag bvh_once_;
+  mutable std::unique_ptr<TargetBvh> bvh_;
 };
 
 class SceneView {

@@ -4,6 +4,8 @@
 #include <atomic>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 #include <thread>
 
 #include "sim/seabed/layer_rules.h"
@@ -13,6 +15,9 @@ namespace sonarloop::seabed {
 namespace {
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
+
+// Model ids: a counter, not randomness (ids never reach an output).
+std::atomic<std::uint64_t> g_next_model_uid{1};
 
 std::int64_t floor_div(std::int64_t a, std::int64_t b) {
   const std::int64_t q = a / b;
@@ -82,6 +87,7 @@ std::unique_ptr<NoiseLayer> make_rocky(const scene::SceneDesc& desc, std::size_t
 
 SeabedModel::SeabedModel(const scene::SceneDesc& desc, SeabedOptions options)
     : options_(options),
+      uid_(g_next_model_uid++),
       spacing_m_(desc.seabed.grid_spacing_m),
       water_depth_m_(desc.water.depth_m),
       slope_(desc.seabed.elevation.slope),
@@ -116,19 +122,27 @@ double SeabedModel::base_elevation(double x, double y) const {
   return h;
 }
 
-std::shared_ptr<const HeightTile> SeabedModel::tile(std::int64_t ti, std::int64_t tj) const {
-  return cache_.get({ti, tj}, [&] { return make_tile(ti, tj); });
+std::shared_ptr<const HeightTile> SeabedModel::tile(std::int64_t ti, std::int64_t tj,
+                                                    int level) const {
+  if (level < 0 || level > kMaxSeabedLevel) {
+    throw std::out_of_range("seabed detail level " + std::to_string(level) + " is outside 0.." +
+                            std::to_string(kMaxSeabedLevel));
+  }
+  return cache_.get({ti, tj, level}, [&] { return make_tile(ti, tj, level); });
 }
 
-std::shared_ptr<const HeightTile> SeabedModel::make_tile(std::int64_t ti, std::int64_t tj) const {
+std::shared_ptr<const HeightTile> SeabedModel::make_tile(std::int64_t ti, std::int64_t tj,
+                                                         int level) const {
   const int t = options_.tile_size;
   const auto tt = static_cast<std::size_t>(t);
-  const double d = spacing_m_;
+  const double d = spacing_m(level);
   const double x0 = static_cast<double>(ti * t) * d;
   const double y0 = static_cast<double>(tj * t) * d;
+  tiles_made_.fetch_add(1, std::memory_order_relaxed);
   auto tile = std::make_shared<HeightTile>();
   tile->ti = ti;
   tile->tj = tj;
+  tile->level = level;
   tile->size = t;
   auto& h = tile->elevation_m;
   h.resize(tt * tt);
@@ -214,10 +228,9 @@ SedimentId SeabedModel::sediment_at(double x, double y) const {
 }
 
 void SeabedModel::prepare(double x0, double y0, double x1, double y1, int threads,
-                          const std::function<void(double)>& on_progress) const {
-  const auto lattice = [&](double v) {
-    return static_cast<std::int64_t>(std::floor(v / spacing_m_));
-  };
+                          const std::function<void(double)>& on_progress, int level) const {
+  const double d = spacing_m(level);
+  const auto lattice = [&](double v) { return static_cast<std::int64_t>(std::floor(v / d)); };
   const std::int64_t ti0 = tile_of(lattice(x0));
   const std::int64_t ti1 = tile_of(lattice(x1) + 1);
   const std::int64_t tj0 = tile_of(lattice(y0));
@@ -228,7 +241,7 @@ void SeabedModel::prepare(double x0, double y0, double x1, double y1, int thread
   std::atomic<std::int64_t> done{0};
   auto work = [&](bool report) {
     for (std::int64_t k = next++; k < count; k = next++) {
-      tile(ti0 + k / nj, tj0 + k % nj);
+      tile(ti0 + k / nj, tj0 + k % nj, level);
       const std::int64_t n_done = ++done;
       if (report && on_progress)
         on_progress(static_cast<double>(n_done) / static_cast<double>(count));

@@ -12,8 +12,15 @@
 // ti, tj): the same bytes whatever order or thread made it, and seamless with its neighbours
 // because every layer is itself a seamless field (noise_layer.h).
 //
+// Detail levels: level L is the same surface sampled on the coarser lattice of spacing
+// d·2^L (point (i, j) of level L is at x = i·d·2^L, y = j·d·2^L, and equals point
+// (i·2^L, j·2^L) of level 0: every layer is a continuous field sampled where asked). A renderer
+// whose pixels are much larger than d reads a coarser level, so that it makes and reads
+// 4^L times fewer points for the same ground (docs/rendering.md, "Level of detail").
+//
 // Thread-safe: all methods are const; caches are internally locked.
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -28,9 +35,12 @@
 
 namespace sonarloop::seabed {
 
+inline constexpr int kMaxSeabedLevel = 4;  // spacing up to 16·d
+
 struct HeightTile {
   std::int64_t ti = 0;
   std::int64_t tj = 0;
+  int level = 0;                       // detail level: lattice spacing d·2^level
   int size = 0;                        // T
   std::vector<float> elevation_m;      // (T x T), row = north index; positive up
   std::vector<std::uint8_t> sediment;  // (T x T) SedimentId of each point
@@ -46,13 +56,20 @@ class SeabedModel {
   explicit SeabedModel(const scene::SceneDesc& desc, SeabedOptions options = {});
 
   double spacing_m() const { return spacing_m_; }
+  // Lattice spacing of detail level `level` (0 .. kMaxSeabedLevel): d·2^level.
+  double spacing_m(int level) const { return spacing_m_ * static_cast<double>(1 << level); }
+  // A process-unique id of this model (never reused), so that per-thread caches of its tiles
+  // can tell one model from another that happens to live at the same address later.
+  std::uint64_t uid() const { return uid_; }
   int tile_size() const { return options_.tile_size; }
   double water_depth_m() const { return water_depth_m_; }
   // Modelled area: [min.x, max.x] × [min.y, max.y] (north, east).
   const Vec2& extent_min() const { return extent_min_; }
   const Vec2& extent_max() const { return extent_max_; }
 
-  std::shared_ptr<const HeightTile> tile(std::int64_t ti, std::int64_t tj) const;
+  // Tile (ti, tj) of detail level `level`: lattice points i in [ti·T, ti·T + T) and j likewise,
+  // at spacing spacing_m(level). Throws std::out_of_range for a level outside 0..kMaxSeabedLevel.
+  std::shared_ptr<const HeightTile> tile(std::int64_t ti, std::int64_t tj, int level = 0) const;
   // Tile index containing lattice index i.
   std::int64_t tile_of(std::int64_t i) const;
 
@@ -69,16 +86,18 @@ class SeabedModel {
   int region_at(double x, double y) const { return partition_.region_at(x, y); }
   const Clutter& clutter() const { return clutter_; }
 
-  // Heightmap tiles currently cached (for tests and memory reports).
+  // Heightmap tiles currently cached (for tests and memory reports), and made since construction
+  // (every detail level; a tile evicted and made again counts twice).
   std::size_t cached_tile_count() const { return cache_.size(); }
+  std::uint64_t tiles_made() const { return tiles_made_.load(std::memory_order_relaxed); }
 
   // Makes every tile overlapping [x0, x1] × [y0, y1] using up to `threads` threads.
   // on_progress (optional) is called on the calling thread with the fraction of tiles done.
   void prepare(double x0, double y0, double x1, double y1, int threads,
-               const std::function<void(double)>& on_progress = {}) const;
+               const std::function<void(double)>& on_progress = {}, int level = 0) const;
 
  private:
-  std::shared_ptr<const HeightTile> make_tile(std::int64_t ti, std::int64_t tj) const;
+  std::shared_ptr<const HeightTile> make_tile(std::int64_t ti, std::int64_t tj, int level) const;
 
   struct RegionLayers {
     SedimentId sediment = 0;
@@ -87,6 +106,7 @@ class SeabedModel {
   };
 
   SeabedOptions options_;
+  std::uint64_t uid_;
   double spacing_m_;
   double water_depth_m_;
   Vec2 slope_;
@@ -97,6 +117,7 @@ class SeabedModel {
   std::vector<RegionLayers> regions_;
   Clutter clutter_;
   mutable TileCache<HeightTile> cache_;
+  mutable std::atomic<std::uint64_t> tiles_made_{0};
 };
 
 }  // namespace sonarloop::seabed

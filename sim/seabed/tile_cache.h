@@ -19,6 +19,7 @@ namespace sonarloop::seabed {
 struct TileKey {
   std::int64_t ti = 0;
   std::int64_t tj = 0;
+  int level = 0;  // detail level (seabed_model.h); 0 for single-level caches
   bool operator==(const TileKey&) const = default;
 };
 
@@ -26,7 +27,8 @@ struct TileKeyHash {
   std::size_t operator()(const TileKey& k) const {
     const auto a = static_cast<std::uint64_t>(k.ti) * 0x9E3779B97F4A7C15ULL;
     const auto b = static_cast<std::uint64_t>(k.tj) * 0xC2B2AE3D27D4EB4FULL;
-    return static_cast<std::size_t>(a ^ (b >> 7) ^ (b << 29));
+    const auto c = static_cast<std::uint64_t>(k.level) * 0x165667B19E3779F9ULL;
+    return static_cast<std::size_t>(a ^ (b >> 7) ^ (b << 29) ^ c);
   }
 };
 

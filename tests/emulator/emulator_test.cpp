@@ -179,14 +179,16 @@ TEST_CASE("emulator --pose-from: pings follow the external pose and pause while 
   hooks.message = [&](std::string_view m) {
     std::lock_guard<std::mutex> lock(mu);
     messages.emplace_back(m);
-    if (m.find("scene view") != std::string_view::npos) started = true;  // t = 0 follows
+    if (m.find("scene for the first ping") != std::string_view::npos)
+      started = true;  // t = 0 follows
   };
   Emulator emu(sc, o, clock, hooks);
 
   // the external vehicle: 1 s of poses at 50 Hz once the run starts, then silence
   std::thread sender([&] {
     net::UdpSender tx(net::parse_host_port("127.0.0.1:" + std::to_string(port)));
-    while (!started)
+    // (bounded, so that a changed start-up message fails the test instead of hanging it)
+    for (int w = 0; !started && w < 10000; ++w)
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     for (std::uint32_t i = 0; i < 50; ++i) {
       PoseMessage m;

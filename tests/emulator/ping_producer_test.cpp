@@ -1,7 +1,7 @@
 // What a render worker does for one ping: no allocation once warmed up, the same bytes whatever
-// the order, the view plan, and the navigation written into the XTF ping. Allocations are
-// counted by replacing the global operator new for this test executable, on the calling thread
-// only (the view cache's builder thread may allocate).
+// the order and whichever renderer, the scene made ahead of the pings, and the navigation
+// written into the XTF ping. Allocations are counted by replacing the global operator new for
+// this test executable, on the calling thread only.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdlib>
@@ -27,27 +27,27 @@ struct Rig {
   config::Scenario sc = config::parse_scenario(testing::small_scenario_yaml(), "test.yaml");
   scene::Scene scene{sc.scene};
   render::SonarSetup setup = render::make_sonar_setup(sc.sonar, sc.scene.water);
-  render::PingRenderer renderer{scene, setup};
+  std::unique_ptr<render::PingRenderer> renderer =
+      render::make_ping_renderer(render::RendererKind::kProfile, setup);
   vehicle::Trajectory trajectory{sc.vehicle.trajectory};
   vehicle::NavSensorModel nav{sc.vehicle.nav, sc.scene.seed};
   LocalTangentPlane ltp{GeoPoint{sc.scene.origin.latitude_deg, sc.scene.origin.longitude_deg}};
   xtf::XtfFileHeader header = make_xtf_file_header(setup, "test", "");
   MonotonicClock clock;
-  ViewCache views{scene, clock};
 
-  PingProducerSetup producer_setup(double chunk_length_m = 10.0) {
+  PingProducerSetup producer_setup(double prepare_ahead_m = 10.0) {
     PingProducerSetup p;
-    p.renderer = &renderer;
+    p.renderer = renderer.get();
+    p.scene = &scene;
     p.trajectory = &trajectory;
     p.nav = &nav;
     p.ltp = &ltp;
     p.header = &header;
-    p.views = &views;
     p.clock = &clock;
     p.seed = sc.scene.seed;
     p.ping_period_ns = from_seconds(setup.ping_period_s);
     p.threads = 1;
-    p.chunk_length_m = chunk_length_m;
+    p.prepare_ahead_m = prepare_ahead_m;
     return p;
   }
   PingSlot slot() const {
@@ -61,11 +61,12 @@ struct Rig {
 
 TEST_CASE("ping producer: no allocation per ping once warmed up") {
   Rig rig;
-  ScenePingProducer p(rig.producer_setup(1000.0));  // one chunk: no prefetch in the window
+  ScenePingProducer p(rig.producer_setup(1.0));
   p.set_epoch_utc_ns(1'767'225'600'000'000'000);
   p.prepare(0, 1);
   PingSlot slot = rig.slot();
-  for (std::int64_t k = 0; k < 5; ++k)
+  // warm up: every ping of the window once (its heightmap tiles, and those it prepares ahead)
+  for (std::int64_t k = 0; k < 45; ++k)
     p.produce(k, 0, slot);
   CHECK(allocations_in([&] {
           for (std::int64_t k = 5; k < 45; ++k)
@@ -92,27 +93,40 @@ TEST_CASE("ping producer: a ping is the same bytes whatever was produced before 
   CHECK(sa.truth.t == 40 * from_seconds(rig.setup.ping_period_s));
 }
 
-TEST_CASE("ping producer: the view plan covers every ping's swath and depends only on the ping") {
+TEST_CASE("ping producer: workers make the scene ahead of the pings they render") {
   Rig rig;
   ScenePingProducer p(rig.producer_setup(10.0));
-  const std::int64_t n = p.chunk_pings();
   // 10 m of track at 2 m/s and 26.7 ms per ping
-  CHECK(n == static_cast<std::int64_t>(std::ceil(10.0 / (2.0 * rig.setup.ping_period_s))));
-  for (std::int64_t k = 0; k < 6 * n; k += 7) {
-    const scene::Box2 r = p.view_region_for_ping(k);
-    const Pose pose = rig.trajectory.state_at(k * from_seconds(rig.setup.ping_period_s)).pose;
-    CHECK(box_contains(r, rig.views.clip(rig.renderer.swath_region(pose))));
-    // the same ping in the same chunk: the same region
-    const scene::Box2 again = p.view_region_for_ping(k);
-    CHECK(again.min == r.min);
-    CHECK(again.max == r.max);
-  }
-  // a fresh producer plans the same regions even when asked out of order
-  ScenePingProducer q(rig.producer_setup(10.0));
-  const scene::Box2 late = q.view_region_for_ping(5 * n + 3);
-  const scene::Box2 ref = p.view_region_for_ping(5 * n + 3);
-  CHECK(late.min == ref.min);
-  CHECK(late.max == ref.max);
+  CHECK(p.prepare_ahead_pings() ==
+        static_cast<std::int64_t>(std::ceil(10.0 / (2.0 * rig.setup.ping_period_s))));
+  p.set_epoch_utc_ns(1'767'225'600'000'000'000);
+  PingSlot slot = rig.slot();
+  p.produce(0, 0, slot);
+  // the tiles of the ping 10 m ahead are made already: rendering it makes none
+  const std::uint64_t made = rig.scene.seabed().tiles_made();
+  REQUIRE(made > 0);
+  render::PingScratch scratch;
+  render::PingLines lines;
+  const Pose ahead =
+      rig.trajectory.state_at(p.prepare_ahead_pings() * from_seconds(rig.setup.ping_period_s)).pose;
+  rig.renderer->render(rig.scene, ahead, 1, 0, {}, scratch, lines);
+  CHECK(rig.scene.seabed().tiles_made() == made);
+}
+
+TEST_CASE("ping producer: the ray-traced renderer produces the same packets whatever came first") {
+  Rig rig;
+  rig.renderer = render::make_ping_renderer(render::RendererKind::kRaytrace, rig.setup);
+  ScenePingProducer a(rig.producer_setup());
+  ScenePingProducer b(rig.producer_setup());
+  a.set_epoch_utc_ns(1'767'225'600'000'000'000);
+  b.set_epoch_utc_ns(1'767'225'600'000'000'000);
+  PingSlot sa = rig.slot(), sb = rig.slot();
+  b.produce(30, 0, sb);
+  for (std::int64_t k = 0; k <= 30; k += 10)
+    a.produce(k, 0, sa);
+  REQUIRE(sa.packet_size == sb.packet_size);
+  CHECK(std::equal(sa.packet.begin(), sa.packet.begin() + static_cast<long>(sa.packet_size),
+                   sb.packet.begin()));
 }
 
 TEST_CASE("ping producer: the XTF ping carries the measured navigation, truth the true pose") {

@@ -218,8 +218,9 @@ TEST_CASE("onboard cli: the default scenario's four targets, in-process, over UD
   const std::vector<Contact> c2 = read_contacts(dir.file("udp.jsonl"), plane);
   const int false2 = check_against_truth(c2, sc);
   CHECK(false2 <= kMaxFalseContacts);
+  // nothing dropped by the emulator (a loaded machine can miss 10x real-time deadlines) and
   // nothing lost on the way: exactly the in-process contacts
-  if (pings == sent) CHECK(slurp(dir.file("udp.jsonl")) == slurp(inproc));
+  if (pings == sent && sent == due) CHECK(slurp(dir.file("udp.jsonl")) == slurp(inproc));
 }
 
 TEST_CASE("onboard cli: usage errors") {

@@ -1,0 +1,59 @@
+#pragma once
+// `sonarloop bench` accuracy sections: renders of the same pings compared with a high-fidelity
+// ray-traced reference (no speckle, no noise, so that only the geometry and the shading differ).
+//
+//   fidelity   one scenario, pings across each target: every fidelity setting of both
+//              renderers (ms per ping, RMS dB error, target shadow-edge error) for the
+//              speed-against-accuracy chart (tools/plot_bench.py)
+//   accuracy   each renderer at its default setting against the reference, over the default
+//              scenario and the four seabed kinds with every sonar preset, and a terrain-following
+//              line with pitch and roll over the rocky seabed
+//
+// Errors (compare_lines):
+//   rms_db_error            RMS of 10·log10(I / I_ref) over bins lit in both renders
+//   shadow_edge_error_bins  mean |far edge of a target's shadow − the reference's| (truth traces)
+//   terrain_edge_error_bins mean distance from each lit/dark transition of the line (beyond the
+//                           nadir gap) to the nearest one in the reference, both ways, edges
+//                           more than kMaxEdgeMatchBins apart counted as that many
+#include <string>
+#include <vector>
+
+#include "config/loader/scenario_loader.h"
+#include "sim/render/ping_renderer.h"
+
+namespace sonarloop::tools {
+
+inline constexpr int kMaxEdgeMatchBins = 10;
+
+// `base` made an isotropic-pixel strip sonar (the paper's): range bin, along-track resolution and
+// range resolution all pixel_m, out to range_m.
+render::SonarDesc isotropic_strip_sonar(const render::SonarDesc& base, double range_m,
+                                        double pixel_m);
+
+struct LineSet {
+  std::vector<render::PingLines> lines;
+  std::vector<std::vector<render::TargetTrace>> traces;
+  double seconds = 0.0;  // rendering only (one thread)
+};
+
+// Renders `poses` without speckle or noise, with truth traces, on one thread (after one untimed
+// pass that makes the tiles or views).
+LineSet render_set(const scene::Scene& scene, const render::PingRenderer& renderer,
+                   const std::vector<Pose>& poses);
+
+struct LineErrors {
+  double rms_db = 0.0;
+  long lit_bins = 0;
+  double target_edge_bins = 0.0;
+  long target_edges = 0;
+  double terrain_edge_bins = 0.0;
+  long terrain_edges = 0;
+};
+LineErrors compare_lines(const LineSet& got, const LineSet& ref);
+
+// The sections; each prints JSON lines. full: the exhaustive grid and an 8x8-ray reference
+// (else 4x4 and a compact grid).
+void bench_fidelity(const config::Scenario& s, bool full);
+void bench_accuracy(const config::Scenario& s, bool full);
+
+}  // namespace sonarloop::tools

@@ -199,6 +199,9 @@ void EchoModel::finish_lines(const RenderOptions& options, std::uint64_t seed,
   const bool speckle = options.speckle && sonar_.desc.speckle;
   const bool noise = options.noise && sonar_.desc.noise;
   const int blur = std::max(1, static_cast<int>(std::lround(sonar_.range_resolution_m / dr)));
+  // only the window's bins are finished (a chip renders a few metres of a long range): the
+  // blur of its first bin reads blur - 1 bins before it
+  const int first_read = std::max(0, k0 - blur + 1);
   for (int side = 0; side < 2; ++side) {
     if (!(options.side_mask & (1 << side))) continue;
     auto& acc = scratch.accum[side];
@@ -209,22 +212,28 @@ void EchoModel::finish_lines(const RenderOptions& options, std::uint64_t seed,
     }
     // pulse longer than a bin: moving average over the range resolution (energy preserving)
     if (blur > 1) {
-      double s = 0.0;
-      for (int k = 0; k < bins; ++k) {
-        s += acc[static_cast<std::size_t>(k)];
-        if (k >= blur) s -= acc[static_cast<std::size_t>(k - blur)];
-        line[static_cast<std::size_t>(k)] = static_cast<float>(s / blur);
+      double sum = 0.0;
+      for (int k = first_read; k < k1; ++k) {
+        sum += acc[static_cast<std::size_t>(k)];
+        if (k - blur >= first_read) sum -= acc[static_cast<std::size_t>(k - blur)];
+        if (k >= k0) line[static_cast<std::size_t>(k)] = static_cast<float>(sum / blur);
       }
-      for (std::size_t k = 0; k < nb; ++k)
-        acc[k] = line[k];
+      for (int k = k0; k < k1; ++k)
+        acc[static_cast<std::size_t>(k)] = line[static_cast<std::size_t>(k)];
     }
+    // fully developed speckle from the stream (seed, ping, side), drawn from the window's first
+    // bin on
     if (speckle) {
       Rng rng(seed, RngStream::kSpeckle, ping_index, static_cast<std::uint64_t>(side));
-      for (std::size_t k = 0; k < nb; ++k)
-        line[k] = static_cast<float>(acc[k] * rng.exponential(1.0));
+      for (int k = k0; k < k1; ++k) {
+        const auto i = static_cast<std::size_t>(k);
+        line[i] = static_cast<float>(acc[i] * rng.exponential(1.0));
+      }
     } else {
-      for (std::size_t k = 0; k < nb; ++k)
-        line[k] = static_cast<float>(acc[k]);
+      for (int k = k0; k < k1; ++k) {
+        const auto i = static_cast<std::size_t>(k);
+        line[i] = static_cast<float>(acc[i]);
+      }
     }
   }
 }

@@ -100,9 +100,10 @@ class EchoModel {
     return source_level_lin_ * m.pattern * d_omega * std::exp(-alpha_np_ * r) / (r * r);
   }
 
-  // The end of every ping: allocates and zeroes the accumulators (start_lines), then adds
-  // thermal noise over the rendered window, blurs to the pulse's range resolution and applies
-  // speckle from (seed, ping_index, side), writing the lines (finish_lines).
+  // The end of every ping: allocates and zeroes the accumulators (start_lines), then, over the
+  // rendered window only (RenderOptions' range window; the lines are zero outside it), adds
+  // thermal noise, blurs to the pulse's range resolution and applies speckle drawn from
+  // (seed, ping_index, side) from the window's first bin on, writing the lines (finish_lines).
   void start_lines(PingScratch& scratch) const;
   void finish_lines(const RenderOptions& options, std::uint64_t seed, std::uint64_t ping_index,
                     double altitude, PingScratch& scratch, PingLines& out) const;

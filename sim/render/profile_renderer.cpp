@@ -16,6 +16,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // A segment steeper than this many bins of slant range (a rock's flank seen end-on) is cut at
 // that many bin edges and its rest goes to the last bin.
 constexpr int kMaxPiecesPerSegment = 64;
+// Echo terms changing by more than this fraction along a segment are interpolated by a
+// quadratic through the segment's middle (see march()).
+constexpr double kCurvedEcho = 0.01;
 // At most this many target rays per beam plane (a target filling the whole fan of a long range).
 constexpr std::int64_t kMaxTargetRays = 1 << 16;
 
@@ -346,66 +349,112 @@ void ProfileRenderer::march(const scene::Scene& scene, const Line& line,
     open_sum += value;
   };
 
-  // Samples are made a block at a time (geometry only: independent of one another, so the
-  // height lookups overlap), then visited in order for the horizon and the echoes.
+  // Samples are made a block at a time (geometry only: independent of one another), in short
+  // passes over the block's arrays, so that many samples are in flight at once: the heights,
+  // then the arithmetic (vectorisable), then the table lookups. Then they are visited in order
+  // for the horizon and the echoes.
   constexpr int kBlock = 64;
   struct Sample {
-    double s, b, rho, inv_rho, alpha, gx, gy;
+    double s, b, rho, inv_rho, alpha;
+    double echo;  // G_v · σ(θ)/sin θ at this point (θ from its own surface normal)
+    double gx, gy;
     std::uint8_t sediment;
   };
   Sample block[kBlock];
+  double px[kBlock], py[kBlock], elev[kBlock], grad_x[kBlock], grad_y[kBlock];
+  double sin_graze[kBlock], off_axis[kBlock];
+  std::uint8_t sediment[kBlock];
   // Where the plane meets the seabed at s depends on the seabed's depth there (the plane tilts
   // with pitch: the point moves along n by Δβ·|w_xy|) and, for a beam's cone, on the range
   // (α = r·sin ψ). Both are extrapolated linearly from the last two samples of the previous
-  // block (the point moves by a fraction of a millimetre against the exact intersection).
+  // block, and where the plane is tilted or a cone the block is sampled a second time at the
+  // point the first pass found (the remaining error is the first's times the seabed slope
+  // times sin(pitch): well below a millimetre).
   double dz_last = line.altitude, dz_slope = 0.0;
   double alpha_last = strip ? line.alpha : std::hypot(line.s_start, line.altitude) * sin_psi;
   double alpha_slope = 0.0;
-
-  // a sample at in-plane distance s with offset alpha along n, on the seabed `h` read there
-  const auto set_sample = [&](Sample& q, double s, double alpha, const seabed::HeightSample& h) {
-    const double dz = line.depth - h.elevation_m - oz;
-    q.s = s;
-    q.b = (dz - alpha * nz) * inv_wz;
-    // ρ and 1/ρ in single precision (0.1 mm at 50 m: enough to bin, ratios exact to 1e-7)
-    const float rho = std::sqrt(static_cast<float>(s * s + q.b * q.b));
-    q.rho = rho;
-    q.inv_rho = 1.0f / rho;
-    q.alpha = strip ? 0.0 : alpha;  // the offset along n from the transducer (beam cone)
-    q.gx = h.dh_dx;
-    q.gy = h.dh_dy;
-    q.sediment = h.sediment;
-  };
   const bool needs_correction = !strip || std::abs(wx) + std::abs(wy) > 1e-9;
+  // sin θ of a point: |d·n| with d = (α n + s u + β w)/r, n = (h_x, h_y, 1)/|.|
+  const auto incidence = [&](double s, double b, double inv_rho, double a, double gx, double gy) {
+    const double dot =
+        (a * nx + s * ux + b * wx) * gx + (a * ny + s * uy + b * wy) * gy + a * nz + b * wz;
+    const double inv_gn = 1.0f / std::sqrt(static_cast<float>(gx * gx + gy * gy + 1.0));
+    return std::abs(dot) * inv_gn * inv_rho * cos_psi;
+  };
+  seabed::HeightSample hs;
+  const auto read_heights = [&](int n) {
+    for (int i = 0; i < n; ++i) {
+      heights.sample(px[i], py[i], hs);
+      elev[i] = hs.elevation_m;
+      grad_x[i] = hs.dh_dx;
+      grad_y[i] = hs.dh_dy;
+      sediment[i] = hs.sediment;
+    }
+  };
+  // β, ρ, 1/ρ of the block's samples from their heights (ρ and 1/ρ in single precision: 0.1 mm
+  // at 50 m is enough to bin, and ratios are exact to 1e-7)
+  const auto set_geometry = [&](int n) {
+    for (int i = 0; i < n; ++i) {
+      Sample& q = block[i];
+      const double dz = line.depth - elev[i] - oz;
+      q.b = (dz - q.alpha * nz) * inv_wz;
+      const float rho = std::sqrt(static_cast<float>(q.s * q.s + q.b * q.b));
+      q.rho = rho;
+      q.inv_rho = 1.0f / rho;
+    }
+  };
 
   // the previous sample P0 (visit order)
   Sample p0{};
   bool hidden0 = false;  // hidden by a target
   // the horizon: the sample with the smallest β/s so far (compared by cross-multiplication)
   double hs_m = 0.0, hb_m = 1.0;  // s, β of that sample; (0, 1) = nothing yet (tan = +inf)
-  seabed::HeightSample hs;
   for (int k0 = 0; k0 < line.samples; k0 += kBlock) {
     const int n = std::min(kBlock, line.samples - k0);
-    // geometry of the block
+    // where to read: the first guess
     for (int i = 0; i < n; ++i) {
-      const double s = line.s_start + (k0 + i) * line.step;
+      Sample& q = block[i];
+      q.s = line.s_start + (k0 + i) * line.step;
       const double alpha = strip ? alpha_last : alpha_last + (i + 1) * alpha_slope;
+      q.alpha = strip ? 0.0 : alpha;  // the offset along n from the transducer (beam cone)
       const double b_guess = (dz_last + (i + 1) * dz_slope - alpha * nz) * inv_wz;
-      heights.sample(ox + alpha * nx + s * ux + b_guess * wx,
-                     oy + alpha * ny + s * uy + b_guess * wy, hs);
-      set_sample(block[i], s, alpha, hs);
+      px[i] = ox + alpha * nx + q.s * ux + b_guess * wx;
+      py[i] = oy + alpha * ny + q.s * uy + b_guess * wy;
     }
-    // a tilted plane (pitch) or a cone (beam): where it meets the seabed depends on the depth
-    // found, so the block is sampled again at the point its first pass found (the remaining
-    // error is the first's times the seabed slope times sin(pitch): well below a millimetre)
+    // the first guess is a straight line in the block (s, α and the guessed depth all linear
+    // in i): walked cell by cell
+    if (n > 1) {
+      heights.sample_line(px[0], py[0], px[1] - px[0], py[1] - py[0], n, elev, grad_x, grad_y,
+                          sediment);
+    } else {
+      read_heights(n);
+    }
+    set_geometry(n);
     if (needs_correction) {
       for (int i = 0; i < n; ++i) {
         Sample& q = block[i];
         const double alpha = strip ? line.alpha : q.rho * inv_cos_psi * sin_psi;
-        heights.sample(ox + alpha * nx + q.s * ux + q.b * wx, oy + alpha * ny + q.s * uy + q.b * wy,
-                       hs);
-        set_sample(q, q.s, alpha, hs);
+        q.alpha = strip ? 0.0 : alpha;
+        px[i] = ox + alpha * nx + q.s * ux + q.b * wx;
+        py[i] = oy + alpha * ny + q.s * uy + q.b * wy;
       }
+      read_heights(n);
+      set_geometry(n);
+    }
+    // The echo terms that depend on the point: the vertical pattern in its direction and
+    // σ(θ)/sin θ of its sediment at its incidence, from its own surface normal (the gradient of
+    // the bilinear surface there): n = (h_x, h_y, 1)/|.| (z down), sin θ = |d·n|.
+    for (int i = 0; i < n; ++i) {
+      Sample& q = block[i];
+      q.gx = grad_x[i];
+      q.gy = grad_y[i];
+      q.sediment = sediment[i];
+      sin_graze[i] = incidence(q.s, q.b, q.inv_rho, q.alpha, q.gx, q.gy);
+      off_axis[i] = (q.s * line.pat_a + q.b * line.pat_b) * q.inv_rho;
+    }
+    for (int i = 0; i < n; ++i) {
+      block[i].echo = em.vertical_pattern_fast(off_axis[i]) *
+                      em.seabed_sigma_over_sin(sediment[i], sin_graze[i]);
     }
     {
       const double dz_n = block[n - 1].b * wz + block[n - 1].alpha * nz;
@@ -466,34 +515,36 @@ void ProfileRenderer::march(const scene::Scene& scene, const Line& line,
           tb = std::min(tb, 0.5);
         }
         if (tb > ta) {
-          // the incidence: the direction from the transducer (the strip's origin) dotted with
-          // the surface normal (h_x, h_y, 1)/|.| (z down) averaged over the segment, linear in t
-          const double gx = 0.5 * (p0.gx + p1.gx);
-          const double gy = 0.5 * (p0.gy + p1.gy);
-          const double inv_gn = 1.0f / std::sqrt(static_cast<float>(gx * gx + gy * gy + 1.0));
-          const double dot0 = (p0.alpha * nx + p0.s * ux + p0.b * wx) * gx +
-                              (p0.alpha * ny + p0.s * uy + p0.b * wy) * gy + p0.alpha * nz +
-                              p0.b * wz;
-          const double dot1 = (p1.alpha * nx + s * ux + b * wx) * gx +
-                              (p1.alpha * ny + s * uy + b * wy) * gy + p1.alpha * nz + b * wz;
           // the angle subtended by the piece t in [t_lo, t_hi] of the segment:
           // |P(t_lo) × P(t_hi)| = (t_hi − t_lo)·|P0 × P1| (P linear in t), over |P(t_lo)|
-          // |P(t_hi)|, with 1/ρ linear in t as well (smooth; second-order error)
+          // |P(t_hi)|, with 1/ρ linear in t (smooth; second-order error); its echo terms linear in
+          // t too
           const double cross = std::abs(p0.s * b - s * p0.b);
-          const auto inv_rho_at = [&](double t) {
-            return p0.inv_rho + t * (p1.inv_rho - p0.inv_rho);
-          };
+          const double d_inv_rho = p1.inv_rho - p0.inv_rho;
+          // E(t) = c0 + c1·t + c2·t²: linear between the ends, or, where the echo changes by more
+          // than kCurvedEcho along the segment (near nadir, where the vertical pattern is steep;
+          // texture), the quadratic through the ends and the middle, integrated exactly over
+          // each piece
+          double c1 = p1.echo - p0.echo, c2 = 0.0;
+          if (std::abs(c1) > kCurvedEcho * (p0.echo + p1.echo)) {
+            const double sm = 0.5 * (p0.s + s), bm = 0.5 * (p0.b + b);
+            const double inv_rho_m = 0.5 * (p0.inv_rho + p1.inv_rho);
+            const double am = 0.5 * (p0.alpha + p1.alpha);
+            const double e_mid =
+                em.vertical_pattern_fast((sm * line.pat_a + bm * line.pat_b) * inv_rho_m) *
+                em.seabed_sigma_over_sin(
+                    p0.sediment,
+                    incidence(sm, bm, inv_rho_m, am, 0.5 * (p0.gx + p1.gx), 0.5 * (p0.gy + p1.gy)));
+            c1 = 4.0 * e_mid - 3.0 * p0.echo - p1.echo;
+            c2 = 2.0 * (p0.echo + p1.echo) - 4.0 * e_mid;
+          }
+          const double c0 = p0.echo;
           const auto deposit = [&](double t_lo, double t_hi, int bin) {
-            const double t = 0.5 * (t_lo + t_hi);
-            const double inv_rho_m = inv_rho_at(t);
-            const double sin_graze =
-                std::abs(dot0 + t * (dot1 - dot0)) * inv_gn * inv_rho_m * cos_psi;
-            const double d_phi = cross * (t_hi - t_lo) * inv_rho_at(t_lo) * inv_rho_at(t_hi);
-            const int sediment = t < 0.5 ? p0.sediment : p1.sediment;
-            const double pattern = em.vertical_pattern_fast(
-                ((p0.s + t * (s - p0.s)) * line.pat_a + (p0.b + t * (b - p0.b)) * line.pat_b) *
-                inv_rho_m);
-            add(bin, pattern * em.seabed_sigma_over_sin(sediment, sin_graze) * d_phi);
+            const double d_phi = cross * (t_hi - t_lo) * (p0.inv_rho + t_lo * d_inv_rho) *
+                                 (p0.inv_rho + t_hi * d_inv_rho);
+            const double mean_echo = c0 + c1 * 0.5 * (t_lo + t_hi) +
+                                     c2 * (t_lo * t_lo + t_lo * t_hi + t_hi * t_hi) / 3.0;
+            add(bin, mean_echo * d_phi);
           };
           // ρ along the segment, linear in t (its curvature over a step is below 1e-5 m)
           const double rho_a = p0.rho + ta * (p1.rho - p0.rho);

@@ -71,4 +71,88 @@ void HeightSampler::sample_slow(double u, double v, std::int64_t i, std::int64_t
   out.sediment = sediment_at(i + (fu >= 0.5), j + (fv >= 0.5));
 }
 
+void HeightSampler::cell_corners_slow(std::int64_t i, std::int64_t j, float h[4],
+                                      std::uint8_t sed[4]) {
+  // make the tile holding (i, j) the current one
+  const HeightTile& t = tile_at(i, j);
+  i0_ = t.ti * t_;
+  j0_ = t.tj * t_;
+  h_ = t.elevation_m.data();
+  s_ = t.sediment.data();
+  const std::int64_t a = i - i0_;
+  const std::int64_t b = j - j0_;
+  if (static_cast<std::uint64_t>(a) < last_ && static_cast<std::uint64_t>(b) < last_) {
+    const std::int64_t m = a * t_ + b;
+    h[0] = h_[m];
+    h[1] = h_[m + 1];
+    h[2] = h_[m + t_];
+    h[3] = h_[m + t_ + 1];
+    sed[0] = s_[m];
+    sed[1] = s_[m + 1];
+    sed[2] = s_[m + t_];
+    sed[3] = s_[m + t_ + 1];
+    return;
+  }
+  // a cell on the tile's last row or column: corners from the neighbouring tiles
+  const std::int64_t ci[4] = {i, i, i + 1, i + 1};
+  const std::int64_t cj[4] = {j, j + 1, j, j + 1};
+  for (int c = 0; c < 4; ++c) {
+    h[c] = height_at(ci[c], cj[c]);
+    sed[c] = sediment_at(ci[c], cj[c]);
+  }
+}
+
+namespace {
+
+// Advances the fractional position f in cell `index` by d (|d| <= 1); true if the cell changed.
+bool step_cell(double& f, std::int64_t& index, double d) {
+  f += d;
+  if (f >= 1.0) {
+    f -= 1.0;
+    ++index;
+    return true;
+  }
+  if (f < 0.0) {
+    f += 1.0;
+    --index;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void HeightSampler::sample_line(double x0, double y0, double dx, double dy, int n,
+                                double* elevation_m, double* dh_dx, double* dh_dy,
+                                std::uint8_t* sediment) {
+  if (n <= 0) return;
+  const double u0 = x0 * inv_d_;
+  const double v0 = y0 * inv_d_;
+  const double du = dx * inv_d_;
+  const double dv = dy * inv_d_;
+  std::int64_t i = floor_to_int(u0);
+  std::int64_t j = floor_to_int(v0);
+  double fu = u0 - static_cast<double>(i);
+  double fv = v0 - static_cast<double>(j);
+  float h[4];
+  std::uint8_t sed[4];
+  cell_corners(i, j, h, sed);
+  for (int k = 0; k < n; ++k) {
+    if (k > 0) {
+      // step; |du|, |dv| <= 1, so the line moves at most one cell along each axis
+      const bool moved_u = step_cell(fu, i, du);
+      const bool moved_v = step_cell(fv, j, dv);
+      const bool moved = moved_u || moved_v;
+      if (moved) cell_corners(i, j, h, sed);
+    }
+    const double h00 = h[0], h01 = h[1], h10 = h[2], h11 = h[3];
+    const double a0 = h00 + fv * (h01 - h00);  // along v at row i
+    const double a1 = h10 + fv * (h11 - h10);  // along v at row i + 1
+    elevation_m[k] = a0 + fu * (a1 - a0);
+    dh_dx[k] = (a1 - a0) * inv_d_;
+    dh_dy[k] = ((h01 - h00) + fu * ((h11 - h10) - (h01 - h00))) * inv_d_;
+    sediment[k] = sed[(fu >= 0.5 ? 2 : 0) + (fv >= 0.5 ? 1 : 0)];
+  }
+}
+
 }  // namespace sonarloop::seabed

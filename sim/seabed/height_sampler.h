@@ -53,6 +53,12 @@ class HeightSampler {
     sample_slow(u, v, i, j, out);
   }
 
+  // The surface at the n points (x0 + k·dx, y0 + k·dy), k = 0 .. n−1, with |dx| and |dy| at
+  // most the lattice spacing: the values sample() gives (up to rounding), faster along a line,
+  // since a cell's corners are read only when the line enters it.
+  void sample_line(double x0, double y0, double dx, double dy, int n, double* elevation_m,
+                   double* dh_dx, double* dh_dy, std::uint8_t* sediment);
+
   // Makes (if needed) and caches the tile holding lattice point (i, j) of the bound level.
   const HeightTile& tile_at(std::int64_t i, std::int64_t j);
 
@@ -77,6 +83,26 @@ class HeightSampler {
     out.sediment = s_[(a + (fu >= 0.5)) * t_ + b + (fv >= 0.5)];
   }
   void sample_slow(double u, double v, std::int64_t i, std::int64_t j, HeightSample& out);
+  // the four corners (heights and sediments) of cell (i, j): (i, j), (i, j+1), (i+1, j), (i+1, j+1)
+  void cell_corners(std::int64_t i, std::int64_t j, float h[4], std::uint8_t sed[4]) {
+    const std::int64_t a = i - i0_;
+    const std::int64_t b = j - j0_;
+    if (static_cast<std::uint64_t>(a) < last_ && static_cast<std::uint64_t>(b) < last_) {
+      const float* p = h_ + (a * t_ + b);
+      const std::uint8_t* q = s_ + (a * t_ + b);
+      h[0] = p[0];
+      h[1] = p[1];
+      h[2] = p[t_];
+      h[3] = p[t_ + 1];
+      sed[0] = q[0];
+      sed[1] = q[1];
+      sed[2] = q[t_];
+      sed[3] = q[t_ + 1];
+      return;
+    }
+    cell_corners_slow(i, j, h, sed);
+  }
+  void cell_corners_slow(std::int64_t i, std::int64_t j, float h[4], std::uint8_t sed[4]);
   float height_at(std::int64_t i, std::int64_t j);
   std::uint8_t sediment_at(std::int64_t i, std::int64_t j);
   const HeightTile& lookup(std::int64_t ti, std::int64_t tj);

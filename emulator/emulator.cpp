@@ -184,14 +184,12 @@ void Emulator::Impl::configure() {
   }
   renderer = render::make_ping_renderer(options.renderer, setup);
 
-  // the vehicle: the full heightmap inside the modelled seabed, the large-scale relief beyond it
-  // (no tiles are generated outside the extent just to report an altitude)
+  // the vehicle plans its depth on the seabed's large-scale relief (slope and pink noise): its
+  // terrain following looks 50 m ahead and smooths over metres, so the centimetre textures and
+  // the rocks are below its bandwidth, and planning a long line makes no heightmap tile
   const scene::Scene& sc = *scene;
   const double water_depth_m = scenario.scene.water.depth_m;
   const vehicle::SeabedDepthFn seabed_depth = [&sc, water_depth_m](double n, double e) {
-    const Vec2 lo = sc.seabed().extent_min();
-    const Vec2 hi = sc.seabed().extent_max();
-    if (n >= lo.x() && n <= hi.x() && e >= lo.y() && e <= hi.y()) return sc.seabed_z(n, e);
     return water_depth_m - sc.seabed().base_elevation(n, e);
   };
   trajectory = std::make_unique<vehicle::Trajectory>(scenario.vehicle.trajectory, seabed_depth);

@@ -228,20 +228,31 @@ void ProfileRenderer::cast_target_rays(const scene::Scene& scene, const Line& li
     const double off_plane =
         line.strip ? c.dot(line.n) - line.alpha : c.dot(line.n) - dist * line.sin_psi;
     if (std::abs(off_plane) > sp.radius_m) continue;
-    double sin_lo = -1.0, sin_hi = 1.0;
-    if (dist > sp.radius_m) {
-      const double dc = std::asin(std::clamp(c.z() / dist, -1.0, 1.0));
-      const double half = std::asin(sp.radius_m / dist);
-      sin_lo = std::sin(std::max(-0.5 * std::numbers::pi, dc - half));
-      sin_hi = std::sin(std::min(0.5 * std::numbers::pi, dc + half));
+    // the directions it can be seen in: sin(depression) = z / sqrt(h² + z²) is monotone in the
+    // depth z below the transducer and in the horizontal distance h, so its extremes over the
+    // box lie at its top or bottom and its nearest or farthest horizontal distance
+    const Eigen::AlignedBox3d& box = sp.box_W;
+    const Vec2 o2 = line.o.head<2>();
+    const Vec2 nearest = o2.cwiseMax(box.min().head<2>()).cwiseMin(box.max().head<2>());
+    const double h_near = (nearest - o2).norm();
+    const double h_far =
+        std::hypot(std::max(std::abs(box.min().x() - o2.x()), std::abs(box.max().x() - o2.x())),
+                   std::max(std::abs(box.min().y() - o2.y()), std::abs(box.max().y() - o2.y())));
+    double sin_lo = 1.0, sin_hi = -1.0;
+    for (const double z : {box.min().z() - line.o.z(), box.max().z() - line.o.z()}) {
+      for (const double h : {h_near, h_far}) {
+        const double len = std::hypot(h, z);
+        const double sn = len > 0.0 ? z / len : 1.0;
+        sin_lo = std::min(sin_lo, sn);
+        sin_hi = std::max(sin_hi, sn);
+      }
     }
-    // (the fan continues nearer than the window where a target is steeper than its first edge:
-    // a target on seabed deeper than the nadir's is seen at steeper depressions)
     const double r_near = sin_hi >= 1.0 ? a : std::max(a, a / sin_hi);
     const double r_far = sin_lo > a / r_cap ? a / sin_lo : r_cap;
     if (r_far <= r_near) continue;
-    m_min = std::min(m_min, static_cast<std::int64_t>(std::floor(edge_of(r_near))));
-    m_max = std::max(m_max, static_cast<std::int64_t>(std::ceil(edge_of(r_far))));
+    // one tube more either side: a box face seen edge-on can reach just past its corners
+    m_min = std::min(m_min, static_cast<std::int64_t>(std::floor(edge_of(r_near))) - 1);
+    m_max = std::max(m_max, static_cast<std::int64_t>(std::ceil(edge_of(r_far))) + 1);
   }
   if (m_max <= m_min) return;
   auto& edge_sin = scratch.ray_edge;

@@ -43,6 +43,7 @@ TargetBvh::TargetBvh(const std::vector<PlacedTarget>& targets) {
   for (const PlacedTarget& p : targets) {
     BoundingSphere s;
     s.centre_W = p.bounds_W.center();
+    s.box_W = p.bounds_W;
     for (const auto& v : p.mesh_T.vertices)
       s.radius_m = std::max(s.radius_m, (p.X_WT * v.cast<double>() - s.centre_W).norm());
     // float rounding of the vertices: a hair more than the exact radius

@@ -17,10 +17,12 @@ namespace sonarloop::scene {
 
 struct PlacedTarget;
 
-// A sphere holding a target's mesh, for cheap culling against a ping's beam planes.
+// A sphere holding a target's mesh, for cheap culling against a ping's beam planes, and its
+// axis-aligned box, for the range of directions it can be seen in.
 struct BoundingSphere {
   Vec3 centre_W = Vec3::Zero();
   double radius_m = 0.0;
+  Eigen::AlignedBox3d box_W;
 };
 
 // A target's mesh in world coordinates less origin_W, attached to `scene` as triangle geometry

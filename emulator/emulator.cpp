@@ -281,6 +281,12 @@ void Emulator::Impl::open_outputs() {
   producer = std::make_unique<ScenePingProducer>(ps);
   queue =
       std::make_unique<RenderQueue>(*producer, options.ring_slots, options.threads, packet_bytes);
+  // paced: ping k is dropped when ping k + 1's send window opens (loop(), ping_window); the
+  // pacer's wall start is set before the queue starts
+  if (pacer.paced()) {
+    queue->set_deadlines(
+        [this](std::int64_t k) { return pacer.wall_of((k + 1) * period + send_delay); }, clock);
+  }
 }
 
 void Emulator::Impl::update_stats(std::int64_t now) {

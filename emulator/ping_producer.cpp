@@ -88,6 +88,14 @@ void ScenePingProducer::prepare(std::int64_t first, int threads) {
     t.join();
 }
 
+void ScenePingProducer::work_ahead(std::int64_t k, int worker) {
+  if (external()) return;  // poses are not known ahead
+  const SimTime ahead = (k + ahead_pings_) * setup_.ping_period_ns;
+  if (ahead >= setup_.trajectory->end_time()) return;
+  setup_.renderer->prepare(*setup_.scene, setup_.trajectory->state_at(ahead).pose, {},
+                           scratch_[static_cast<std::size_t>(worker)]);
+}
+
 bool ScenePingProducer::wait_for_ping_time(SimTime t) {
   const Clock& clock = *setup_.clock;
   const std::int64_t due = setup_.pacer->wall_of(t);
@@ -133,11 +141,6 @@ void ScenePingProducer::produce(std::int64_t k, int worker, PingSlot& slot) {
     nav_model = &exact_nav_;
   } else {
     state = setup_.trajectory->state_at(t);
-    // what a ping further on will read, made now on this worker
-    const SimTime ahead = (k + ahead_pings_) * setup_.ping_period_ns;
-    if (ahead < setup_.trajectory->end_time()) {
-      setup_.renderer->prepare(*setup_.scene, setup_.trajectory->state_at(ahead).pose, {}, scratch);
-    }
   }
 
   // render and encode time

@@ -8,10 +8,10 @@
 // fields come from NavSensorModel::measure(state) (what the vehicle's navigation reports, with
 // the scenario's errors), the render from the true pose, with randomness keyed by (seed, k).
 // The ping is therefore a pure function of (scenario, k): workers may render it any time ahead,
-// on any thread. Before rendering ping k a worker prepares ping k + prepare_ahead_pings()
-// (PingRenderer::prepare: the heightmap tiles along its ground lines, or the ray tracer's view),
-// so the scene is made ahead of the pings on the workers themselves and a ping rarely waits
-// for it.
+// on any thread. After handing ping k to the publisher a worker prepares ping
+// k + prepare_ahead_pings() (work_ahead; PingRenderer::prepare: the heightmap tiles along its
+// ground lines, or the ray tracer's view), so the scene is made ahead of the pings on the
+// workers themselves, off the path of the ping due now, and a ping rarely waits for it.
 //
 // External pose (--pose-from). The worker waits for the ping's wall time, takes the source's
 // latest pose and renders from it. Fields the source does not provide (its has_* flags) come
@@ -65,6 +65,8 @@ class ScenePingProducer final : public PingProducer {
   void set_epoch_utc_ns(std::int64_t epoch_utc_ns) { epoch_utc_ns_ = epoch_utc_ns; }
 
   void produce(std::int64_t k, int worker, PingSlot& slot) override;
+  // Trajectory mode: prepares ping k + prepare_ahead_pings().
+  void work_ahead(std::int64_t k, int worker) override;
   // Stops waiting for ping times (end of the run).
   void cancel() override { cancelled_ = true; }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 namespace sonarloop::emulator {
 
@@ -17,6 +18,23 @@ RenderQueue::RenderQueue(PingProducer& producer, int slots, int threads, std::si
 
 RenderQueue::~RenderQueue() {
   stop();
+}
+
+void RenderQueue::set_deadlines(std::function<std::int64_t(std::int64_t)> give_up_ns,
+                                const Clock& clock) {
+  std::lock_guard<std::mutex> lock(mu_);
+  if (!workers_.empty()) throw std::logic_error("RenderQueue::set_deadlines after start");
+  give_up_ns_ = std::move(give_up_ns);
+  clock_ = &clock;
+}
+
+std::int64_t RenderQueue::first_deliverable() const {
+  std::int64_t k = next_claim_;
+  if (!give_up_ns_ || render_mean_ns_ <= 0) return k;
+  const std::int64_t done = clock_->now_ns() + render_mean_ns_;
+  while (k < end_ && give_up_ns_(k) < done)
+    ++k;
+  return k;
 }
 
 void RenderQueue::start(std::int64_t first, std::int64_t end) {
@@ -71,6 +89,16 @@ void RenderQueue::release(std::int64_t k) {
   cv_.notify_all();
 }
 
+void RenderQueue::fail(std::unique_lock<std::mutex>& lock, const std::string& what) {
+  if (error_.empty()) error_ = what;
+  failed_ = true;
+  stopping_ = true;
+  lock.unlock();
+  cv_.notify_all();
+  producer_.cancel();
+  wakeup_.notify();
+}
+
 void RenderQueue::work(int worker) {
   const auto n = static_cast<std::int64_t>(slots_.size());
   std::unique_lock<std::mutex> lock(mu_);
@@ -81,6 +109,7 @@ void RenderQueue::work(int worker) {
     cv_.wait(lock, [&] {
       if (stopping_) return true;
       next_claim_ = std::max(next_claim_, consumer_next_);
+      next_claim_ = first_deliverable();
       if (next_claim_ >= end_) return false;
       s = static_cast<std::size_t>(next_claim_ % n);
       return state_[s] == State::kFree;
@@ -93,26 +122,26 @@ void RenderQueue::work(int worker) {
     slot.index = k;
     lock.unlock();
 
-    bool ok = true;
     std::string what;
     try {
       producer_.produce(k, worker, slot);
     } catch (const std::exception& e) {
-      ok = false;
-      what = e.what();
+      what = "ping " + std::to_string(k) + ": " + e.what();
     }
 
     lock.lock();
-    if (!ok) {
-      if (error_.empty()) error_ = "ping " + std::to_string(k) + ": " + what;
-      failed_ = true;
-      stopping_ = true;
+    if (!what.empty()) {
       state_[s] = State::kFree;
-      lock.unlock();
-      cv_.notify_all();
-      producer_.cancel();
-      wakeup_.notify();
-      return;
+      return fail(lock, what);
+    }
+    // running mean over about the last 8 pings (the first ping sets it); one slow ping (a tile
+    // made on the spot) counts at most 4 times the mean, so it does not make the workers skip
+    // pings they could deliver
+    if (render_mean_ns_ == 0) {
+      render_mean_ns_ = std::max<std::int64_t>(slot.produce_ns, 1);
+    } else {
+      const std::int64_t sample = std::min(slot.produce_ns, 4 * render_mean_ns_);
+      render_mean_ns_ = std::max<std::int64_t>(1, render_mean_ns_ + (sample - render_mean_ns_) / 8);
     }
     produced_.fetch_add(1);
     produce_total_ns_.fetch_add(slot.produce_ns);
@@ -126,10 +155,18 @@ void RenderQueue::work(int worker) {
       cv_.notify_all();
     } else {
       state_[s] = State::kReady;
-      lock.unlock();
-      wakeup_.notify();
-      lock.lock();
     }
+    lock.unlock();
+    wakeup_.notify();
+
+    // the ping is out of this worker's hands: now the work for later pings
+    try {
+      producer_.work_ahead(k, worker);
+    } catch (const std::exception& e) {
+      what = "work ahead of ping " + std::to_string(k) + ": " + e.what();
+    }
+    lock.lock();
+    if (!what.empty()) return fail(lock, what);
   }
 }
 

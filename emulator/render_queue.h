@@ -8,6 +8,16 @@
 // and releases each one, sent or dropped. Nothing is allocated per ping: every buffer of a slot
 // (lines, XTF ping, encoded packet) keeps its capacity from ping to ping.
 //
+// Work ahead. After a worker has handed ping k to the publisher it calls the producer's
+// work_ahead(k): what later pings will read (the scene's tiles) is made there, off the path of
+// ping k, so a ping due now never waits for scene work meant for a ping further on.
+//
+// Falling behind. In a paced run the publisher gives ping k up at a wall time (the close of its
+// send window, set_deadlines). A worker that claims a ping then skips every ping it could not
+// finish before that time at the recent render time (a running mean of produce_ns), and renders
+// the first one it can still deliver: when rendering is slower than the ping rate the run sends
+// every n-th ping instead of rendering each one just too late and sending none.
+//
 // Dropped pings. The publisher may give up on ping k (its send window passed, pacer.h
 // ping_window) while a worker is still producing it: release(k) then marks the slot, and the
 // worker frees it when it finishes. A ping the publisher gave up on before any worker claimed it
@@ -18,6 +28,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <string>
@@ -62,6 +73,8 @@ class PingProducer {
  public:
   virtual ~PingProducer() = default;
   virtual void produce(std::int64_t k, int worker, PingSlot& slot) = 0;
+  // Called by the same worker after ping k is ready (or given up on): work for later pings.
+  virtual void work_ahead(std::int64_t /*k*/, int /*worker*/) {}
   // Asks producers blocked in produce() (waiting for a view or for a ping time) to return soon.
   virtual void cancel() {}
 };
@@ -74,6 +87,8 @@ class RenderQueue {
   RenderQueue(const RenderQueue&) = delete;
   RenderQueue& operator=(const RenderQueue&) = delete;
 
+  // Paced runs, before start(): ping k is given up at wall time give_up_ns(k) on `clock`.
+  void set_deadlines(std::function<std::int64_t(std::int64_t)> give_up_ns, const Clock& clock);
   // Starts the workers on pings [first, end).
   void start(std::int64_t first, std::int64_t end = std::numeric_limits<std::int64_t>::max());
   // Stops and joins the workers (idempotent).
@@ -100,6 +115,10 @@ class RenderQueue {
  private:
   enum class State : std::uint8_t { kFree, kProducing, kReady };
   void work(int worker);
+  // the first ping from next_claim_ on that can be finished before it is given up (mu_ held)
+  std::int64_t first_deliverable() const;
+  // records the first error and stops the queue; unlocks `lock`
+  void fail(std::unique_lock<std::mutex>& lock, const std::string& what);
 
   PingProducer& producer_;
   int threads_;
@@ -112,6 +131,9 @@ class RenderQueue {
   std::int64_t next_claim_ = 0;
   std::int64_t end_ = 0;
   std::int64_t consumer_next_ = 0;  // the publisher has released every ping below this
+  std::function<std::int64_t(std::int64_t)> give_up_ns_;  // paced runs (set_deadlines)
+  const Clock* clock_ = nullptr;
+  std::int64_t render_mean_ns_ = 0;  // running mean of produce_ns (0: none yet)
   bool stopping_ = false;
   std::string error_;
   std::atomic<bool> failed_{false};

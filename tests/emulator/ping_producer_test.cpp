@@ -95,16 +95,19 @@ TEST_CASE("ping producer: a ping is the same bytes whatever was produced before 
 
 TEST_CASE("ping producer: workers make the scene ahead of the pings they render") {
   Rig rig;
-  ScenePingProducer p(rig.producer_setup(10.0));
-  // 10 m of track at 2 m/s and 26.7 ms per ping
+  ScenePingProducer p(rig.producer_setup(40.0));
+  // 40 m of track at 2 m/s and 26.7 ms per ping (further than the tiles ping 0 reads reach)
   CHECK(p.prepare_ahead_pings() ==
-        static_cast<std::int64_t>(std::ceil(10.0 / (2.0 * rig.setup.ping_period_s))));
+        static_cast<std::int64_t>(std::ceil(40.0 / (2.0 * rig.setup.ping_period_s))));
   p.set_epoch_utc_ns(1'767'225'600'000'000'000);
   PingSlot slot = rig.slot();
   p.produce(0, 0, slot);
-  // the tiles of the ping 10 m ahead are made already: rendering it makes none
+  const std::uint64_t rendered = rig.scene.seabed().tiles_made();
+  REQUIRE(rendered > 0);
+  // the work ahead of ping 0 makes the tiles of the ping 40 m ahead: rendering it makes none
+  p.work_ahead(0, 0);
   const std::uint64_t made = rig.scene.seabed().tiles_made();
-  REQUIRE(made > 0);
+  REQUIRE(made > rendered);
   render::PingScratch scratch;
   render::PingLines lines;
   const Pose ahead =

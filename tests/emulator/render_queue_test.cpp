@@ -2,16 +2,50 @@
 // does not hold up the others, dropped pings, errors.
 #include <atomic>
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <condition_variable>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "emulator/render_queue.h"
 
 using namespace sonarloop::emulator;
 
 namespace {
+
+// A gate a producer blocks at until the test lets it go or the queue cancels.
+class Gate {
+ public:
+  // blocks; `entered` is set (and waiters woken) on the way in
+  void wait() {
+    std::unique_lock<std::mutex> lock(mu_);
+    entered_ = true;
+    cv_.notify_all();
+    cv_.wait(lock, [&] { return go_ || cancelled_; });
+  }
+  void cancel() { set(cancelled_); }
+  void let_go() { set(go_); }
+  // true once a producer is waiting at the gate (gives up after 20 s)
+  bool entered() {
+    std::unique_lock<std::mutex> lock(mu_);
+    return cv_.wait_for(lock, std::chrono::seconds(20), [&] { return entered_; });
+  }
+
+ private:
+  void set(bool& flag) {
+    std::lock_guard<std::mutex> lock(mu_);
+    flag = true;
+    cv_.notify_all();
+  }
+  std::mutex mu_;
+  std::condition_variable cv_;
+  bool entered_ = false;
+  bool go_ = false;
+  bool cancelled_ = false;
+};
 
 // Writes k into the first packet byte; ping `slow` blocks until released.
 class FakeProducer final : public PingProducer {
@@ -20,41 +54,82 @@ class FakeProducer final : public PingProducer {
       : slow_(slow), fail_(fail) {}
   void produce(std::int64_t k, int, PingSlot& slot) override {
     if (k == fail_) throw std::runtime_error("boom");
-    if (k == slow_) {
-      in_slow_ = true;
-      std::unique_lock<std::mutex> lock(mu_);
-      cv_.wait(lock, [&] { return go_ || cancelled_; });
-    }
+    if (k == slow_) gate_.wait();
     slot.packet[0] = static_cast<std::uint8_t>(k & 0xFF);
     slot.packet_size = 1;
     ++produced_;
     highest_ = std::max<std::int64_t>(highest_, k);
   }
-  void cancel() override {
-    std::lock_guard<std::mutex> lock(mu_);
-    cancelled_ = true;
-    cv_.notify_all();
-  }
-  void let_go() {
-    std::lock_guard<std::mutex> lock(mu_);
-    go_ = true;
-    cv_.notify_all();
-  }
-  void wait_in_slow() const {
-    while (!in_slow_)
-      std::this_thread::yield();
-  }
+  void cancel() override { gate_.cancel(); }
+  void let_go() { gate_.let_go(); }
+  bool wait_in_slow() { return gate_.entered(); }
   std::atomic<int> produced_{0};
-  std::atomic<bool> in_slow_{false};
   std::atomic<std::int64_t> highest_{-1};
 
  private:
   std::int64_t slow_;
   std::int64_t fail_;
+  Gate gate_;
+};
+
+// work_ahead(k) of ping `blocked` waits until released; work_ahead of ping `fail` throws.
+class AheadProducer final : public PingProducer {
+ public:
+  AheadProducer(std::int64_t blocked, std::int64_t fail) : blocked_(blocked), fail_(fail) {}
+  void produce(std::int64_t k, int, PingSlot& slot) override {
+    slot.packet[0] = static_cast<std::uint8_t>(k & 0xFF);
+    slot.packet_size = 1;
+  }
+  void work_ahead(std::int64_t k, int) override {
+    if (k == fail_) throw std::runtime_error("no tile");
+    if (k == blocked_) gate_.wait();
+  }
+  void cancel() override { gate_.cancel(); }
+  void let_go() { gate_.let_go(); }
+  bool in_blocked() { return gate_.entered(); }
+
+ private:
+  std::int64_t blocked_;
+  std::int64_t fail_;
+  Gate gate_;
+};
+
+// A clock that only moves when told.
+class ManualClock final : public Clock {
+ public:
+  std::int64_t now_ns() const override { return now_.load(); }
+  std::int64_t utc_now_ns() const override { return now_.load(); }
+  std::int64_t process_cpu_ns() const override { return 0; }
+  void sleep_until(std::int64_t deadline_ns) override {
+    now_.store(std::max(now_.load(), deadline_ns));
+  }
+  void advance(std::int64_t ns) { now_.fetch_add(ns); }
+
+ private:
+  std::atomic<std::int64_t> now_{0};
+};
+
+// Each ping takes `render_ns` of the manual clock; records when each one was finished.
+class SlowProducer final : public PingProducer {
+ public:
+  SlowProducer(ManualClock& clock, std::int64_t render_ns) : clock_(clock), render_ns_(render_ns) {}
+  void produce(std::int64_t k, int, PingSlot& slot) override {
+    clock_.advance(render_ns_);
+    slot.produce_ns = render_ns_;
+    slot.packet_size = 1;
+    std::lock_guard<std::mutex> lock(mu_);
+    finished_.emplace_back(k, clock_.now_ns());
+  }
+  std::vector<std::pair<std::int64_t, std::int64_t>> finished() {
+    std::lock_guard<std::mutex> lock(mu_);
+    return finished_;
+  }
+
+ private:
+  ManualClock& clock_;
+  std::int64_t render_ns_;
   std::mutex mu_;
-  std::condition_variable cv_;
-  bool go_ = false;
-  bool cancelled_ = false;
+  std::vector<std::pair<std::int64_t, std::int64_t>> finished_;
 };
 
 // Waits (on the queue's wake-up) until ping k is ready.
@@ -120,7 +195,7 @@ TEST_CASE("RenderQueue: pings the publisher gave up on before a worker took them
   FakeProducer p(/*slow=*/0);
   RenderQueue q(p, 4, 1, 16);  // one worker, stuck on ping 0
   q.start(0, 20);
-  p.wait_in_slow();  // the worker is inside ping 0
+  REQUIRE(p.wait_in_slow());  // the worker is inside ping 0
   // the publisher drops 0..5 without waiting (their windows passed)
   for (std::int64_t k = 0; k < 6; ++k)
     q.release(k);
@@ -153,4 +228,62 @@ TEST_CASE("RenderQueue: stop() returns while a producer is blocked") {
   q.start(0);
   q.stop();  // cancel() releases the blocked producer
   SUCCEED();
+}
+
+TEST_CASE("RenderQueue: work for later pings runs after the ping is handed over") {
+  AheadProducer p(/*blocked=*/0, /*fail=*/-1);
+  RenderQueue q(p, 4, 1, 16);  // one worker
+  q.start(0, 10);
+  // the only worker is held inside work_ahead(0): ping 0 is ready all the same
+  REQUIRE(p.in_blocked());
+  const PingSlot* s = wait_ready(q, 0);
+  REQUIRE(s);
+  CHECK(s->index == 0);
+  q.release(0);
+  CHECK_FALSE(q.ready(1));  // the worker is still busy ahead
+  p.let_go();
+  for (std::int64_t k = 1; k < 10; ++k) {
+    REQUIRE(wait_ready(q, k));
+    q.release(k);
+  }
+  q.stop();
+  CHECK(q.produced() == 10);
+}
+
+TEST_CASE("RenderQueue: an error in the work ahead stops the queue and is reported") {
+  AheadProducer p(-1, /*fail=*/2);
+  RenderQueue q(p, 8, 1, 16);
+  q.start(0, 100);
+  for (std::int64_t k = 0; k < 3; ++k) {  // 0..2 are handed over before the failure
+    REQUIRE(wait_ready(q, k));
+    q.release(k);
+  }
+  CHECK(wait_ready(q, 3) == nullptr);
+  CHECK(q.failed());
+  CHECK(q.error().find("work ahead of ping 2: no tile") != std::string::npos);
+}
+
+TEST_CASE(
+    "RenderQueue: when rendering is slower than the pings, workers render pings they can deliver") {
+  // pings given up every 10 ms, each render takes 25 ms: one worker can deliver one in three
+  ManualClock clock;
+  SlowProducer p(clock, 25'000'000);
+  RenderQueue q(p, 64, 1, 16);
+  auto give_up = [](std::int64_t k) { return (k + 1) * 10'000'000; };
+  q.set_deadlines(give_up, clock);
+  q.start(0, 40);
+  // the publisher is not needed here: the ring (64) holds every ping; wait for the worker to end
+  for (int i = 0; i < 2000 && clock.now_ns() < 400'000'000; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  q.stop();
+  const auto done = p.finished();
+  REQUIRE(done.size() >= 10);
+  // ping 0 (no render time known yet) is late; every later one is finished before it is given up,
+  // and none is skipped that could have been delivered
+  CHECK(done[0].first == 0);
+  for (std::size_t i = 1; i < done.size(); ++i) {
+    INFO("ping " << done[i].first << " finished at " << done[i].second);
+    CHECK(done[i].second <= give_up(done[i].first));
+    CHECK(done[i].second > give_up(done[i].first - 1));
+  }
 }

@@ -22,15 +22,25 @@ void emit(const json::Writer& w) {
   std::fflush(stdout);
 }
 
-// The transitions between lit and dark bins of a line beyond its nadir gap.
-void edges_of(const std::vector<float>& line, std::vector<int>& out) {
+// The transitions between lit and dark bins of a line beyond its nadir gap and before bin
+// `end` (the reference's last lit bin: its fan, laid out for a flat seabed at the nadir
+// altitude, can fall short of the far end over deeper seabed).
+void edges_of(const std::vector<float>& line, std::size_t end, std::vector<int>& out) {
   out.clear();
   std::size_t k = 0;
   while (k < line.size() && line[k] <= 0.0f)
     ++k;  // the water column
-  for (++k; k < line.size(); ++k) {
+  for (++k; k < std::min(end, line.size()); ++k) {
     if ((line[k] > 0.0f) != (line[k - 1] > 0.0f)) out.push_back(static_cast<int>(k));
   }
+}
+
+// One past the last lit bin of a line.
+std::size_t lit_end(const std::vector<float>& line) {
+  std::size_t end = line.size();
+  while (end > 0 && line[end - 1] <= 0.0f)
+    --end;
+  return end;
 }
 
 // Σ over `a` of the distance to the nearest edge of `b` (capped), and the count.
@@ -142,8 +152,9 @@ LineErrors compare_lines(const LineSet& got, const LineSet& ref) {
           ++e.lit_bins;
         }
       }
-      edges_of(a, ea);
-      edges_of(b, eb);
+      const std::size_t end = lit_end(b);
+      edges_of(a, end, ea);
+      edges_of(b, end, eb);
       edge_distances(ea, eb, terrain_sum, e.terrain_edges);
       edge_distances(eb, ea, terrain_sum, e.terrain_edges);
     }

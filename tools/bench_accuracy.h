@@ -13,8 +13,10 @@
 //   rms_db_error            RMS of 10·log10(I / I_ref) over bins lit in both renders
 //   shadow_edge_error_bins  mean |far edge of a target's shadow − the reference's| (truth traces)
 //   terrain_edge_error_bins mean distance from each lit/dark transition of the line (beyond the
-//                           nadir gap) to the nearest one in the reference, both ways, edges
-//                           more than kMaxEdgeMatchBins apart counted as that many
+//                           nadir gap, before the reference's last lit bin) to the nearest one
+//                           in the reference, both ways, edges more than kMaxEdgeMatchBins
+//                           apart counted as that many
+
 #include <string>
 #include <vector>
 

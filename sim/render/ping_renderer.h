@@ -160,8 +160,9 @@ class PingRenderer {
                       PingLines& out) const = 0;
 
   // Makes, on the calling thread, what a ping from `pose` will read (profile: the heightmap tiles
-  // along its ground lines and the target BVH; raytrace: its Embree view), so that rendering it
-  // later does not wait. Optional: render() makes whatever is missing itself.
+  // along its ground lines, except those another thread is making, and the target BVH;
+  // raytrace: its Embree view), so that rendering it later does not wait. Optional: render()
+  // makes whatever is missing itself.
   virtual void prepare(const scene::Scene& scene, const Pose& pose, const RenderOptions& options,
                        PingScratch& scratch) const = 0;
 

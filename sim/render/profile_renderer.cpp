@@ -72,6 +72,7 @@ void ProfileRenderer::prepare(const scene::Scene& scene, const Pose& pose,
   const MarchPlan plan = march_plan(fidelity_, sb.spacing_m(), sonar_.desc.bin_size_m);
   scratch.heights.bind(sb, plan.level);
   scene.target_bvh();
+  const double d = sb.spacing_m(plan.level);
   // the tiles along each side's ground line, at half a tile's width apart
   const double r = std::min(options.range_max_m, sonar_.desc.max_range_m);
   const double tile_m = sb.tile_size() * plan.spacing_m;
@@ -81,14 +82,17 @@ void ProfileRenderer::prepare(const scene::Scene& scene, const Pose& pose,
   const Vec2 across(-along.y(), along.x());
   const Vec2 lo = sb.extent_min();
   const Vec2 hi = sb.extent_max();
-  seabed::HeightSample hs;
+  // tiles another thread is making are left to it: work ahead never waits
+  const auto tile_of = [&](double v) {
+    return sb.tile_of(static_cast<std::int64_t>(std::floor(v / d)));
+  };
   for (int side = 0; side < 2; ++side) {
     if (!(options.side_mask & (1 << side))) continue;
     const double sign = side == 0 ? -1.0 : 1.0;
     for (double s = 0.0; s <= r + 0.5 * tile_m; s += 0.5 * tile_m) {
       const Vec2 p = pose.position_W.head<2>() + sign * std::min(s, r) * across;
       if (p.x() < lo.x() || p.y() < lo.y() || p.x() > hi.x() || p.y() > hi.y()) continue;
-      scratch.heights.sample(p.x(), p.y(), hs);
+      sb.prefetch_tile(tile_of(p.x()), tile_of(p.y()), plan.level);
     }
   }
 }

@@ -131,6 +131,14 @@ std::shared_ptr<const HeightTile> SeabedModel::tile(std::int64_t ti, std::int64_
   return cache_.get({ti, tj, level}, [&] { return make_tile(ti, tj, level); });
 }
 
+void SeabedModel::prefetch_tile(std::int64_t ti, std::int64_t tj, int level) const {
+  if (level < 0 || level > kMaxSeabedLevel) {
+    throw std::out_of_range("seabed detail level " + std::to_string(level) + " is outside 0.." +
+                            std::to_string(kMaxSeabedLevel));
+  }
+  cache_.prefetch({ti, tj, level}, [&] { return make_tile(ti, tj, level); });
+}
+
 std::shared_ptr<const HeightTile> SeabedModel::make_tile(std::int64_t ti, std::int64_t tj,
                                                          int level) const {
   const int t = options_.tile_size;

@@ -70,6 +70,9 @@ class SeabedModel {
   // Tile (ti, tj) of detail level `level`: lattice points i in [ti·T, ti·T + T) and j likewise,
   // at spacing spacing_m(level). Throws std::out_of_range for a level outside 0..kMaxSeabedLevel.
   std::shared_ptr<const HeightTile> tile(std::int64_t ti, std::int64_t tj, int level = 0) const;
+  // Makes tile (ti, tj) of `level` unless it is cached or another thread is making it; never
+  // waits (for work ahead of the renders).
+  void prefetch_tile(std::int64_t ti, std::int64_t tj, int level) const;
   // Tile index containing lattice index i.
   std::int64_t tile_of(std::int64_t i) const;
 

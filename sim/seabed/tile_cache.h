@@ -1,9 +1,10 @@
 #pragma once
 // A thread-safe cache of lazily generated tiles keyed by (ti, tj), with least-recently-used
 // eviction beyond a capacity. A tile asked for by several threads at once is generated once:
-// the others wait for it. Tiles are immutable once made (shared_ptr<const V>), so an evicted
-// tile stays valid for whoever still holds it, and regenerating it gives the same bytes
-// because every generator here is a pure function of (seed, tile).
+// the others wait for it (prefetch() does not wait). Tiles are immutable once made
+// (shared_ptr<const V>), so an evicted tile stays valid for whoever still holds it, and
+// regenerating it gives the same bytes because every generator here is a pure function of (seed,
+// tile).
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -43,32 +44,16 @@ class TileCache {
   Ptr get(const TileKey& key, const std::function<Ptr()>& make) {
     std::promise<Ptr> promise;
     std::shared_future<Ptr> future;
-    bool mine = false;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      auto it = map_.find(key);
-      if (it != map_.end()) {
-        it->second.last_use = ++clock_;
-        future = it->second.value;
-      } else {
-        future = promise.get_future().share();
-        map_.emplace(key, Entry{future, ++clock_});
-        mine = true;
-      }
-    }
-    if (mine) {
-      try {
-        promise.set_value(make());
-      } catch (...) {
-        // forget the failed entry so a later call retries, and pass the error on
-        std::lock_guard<std::mutex> lock(mutex_);
-        map_.erase(key);
-        promise.set_exception(std::current_exception());
-        throw;
-      }
-      evict_if_needed();
-    }
+    if (claim(key, promise, future)) fulfil(key, promise, make);
     return future.get();
+  }
+
+  // Makes the tile with `make` if nobody has: returns at once, without waiting, when the tile is
+  // cached or another thread is making it (work ahead never waits for work ahead).
+  void prefetch(const TileKey& key, const std::function<Ptr()>& make) {
+    std::promise<Ptr> promise;
+    std::shared_future<Ptr> future;
+    if (claim(key, promise, future)) fulfil(key, promise, make);
   }
 
   std::size_t size() const {
@@ -86,6 +71,35 @@ class TileCache {
     std::shared_future<Ptr> value;
     std::uint64_t last_use = 0;
   };
+
+  // The entry's future; true if it is new and this thread must fulfil it.
+  bool claim(const TileKey& key, std::promise<Ptr>& promise, std::shared_future<Ptr>& future) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = map_.find(key);
+    if (it != map_.end()) {
+      it->second.last_use = ++clock_;
+      future = it->second.value;
+      return false;
+    }
+    future = promise.get_future().share();
+    map_.emplace(key, Entry{future, ++clock_});
+    return true;
+  }
+
+  void fulfil(const TileKey& key, std::promise<Ptr>& promise, const std::function<Ptr()>& make) {
+    try {
+      promise.set_value(make());
+    } catch (...) {
+      // forget the failed entry so a later call retries, and pass the error on
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        map_.erase(key);
+      }
+      promise.set_exception(std::current_exception());
+      throw;
+    }
+    evict_if_needed();
+  }
 
   void evict_if_needed() {
     std::lock_guard<std::mutex> lock(mutex_);

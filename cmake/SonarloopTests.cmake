@@ -1,10 +1,8 @@
 # sonarloop_add_test(SOURCE LIBS...): one Catch2 executable per test file, named after its path
 # below tests/ (tests/sim/seabed/fractal_test.cpp -> test_sim_seabed_fractal), registered with CTest.
 function(sonarloop_add_test source)
-  if(SONARLOOP_ALLOW_MISSING_TESTS AND NOT EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/${source})
-    message(WARNING "skipping missing test source ${source} (SONARLOOP_ALLOW_MISSING_TESTS)")
-    return()
-  endif()
+  set_property(GLOBAL APPEND PROPERTY SONARLOOP_TEST_SOURCES
+                                      ${CMAKE_CURRENT_SOURCE_DIR}/${source})
   file(RELATIVE_PATH rel ${PROJECT_SOURCE_DIR}/tests ${CMAKE_CURRENT_SOURCE_DIR}/${source})
   string(REGEX REPLACE "_test\\.cpp$" "" stem ${rel})
   string(REPLACE "/" "_" stem ${stem})
@@ -21,4 +19,20 @@ function(sonarloop_add_test source)
   target_compile_options(${name} PRIVATE -Wno-conversion)
   add_test(NAME ${name} COMMAND ${name} WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
   set_tests_properties(${name} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
+endfunction()
+
+# sonarloop_check_all_tests_registered(): fails the configuration when a *_test.cpp under tests/
+# is not built by any sonarloop_add_test (a test cannot vanish by a forgotten CMake line).
+function(sonarloop_check_all_tests_registered)
+  get_property(registered GLOBAL PROPERTY SONARLOOP_TEST_SOURCES)
+  file(GLOB_RECURSE found ${PROJECT_SOURCE_DIR}/tests/*_test.cpp)
+  set(missing "")
+  foreach(f ${found})
+    if(NOT f IN_LIST registered)
+      list(APPEND missing ${f})
+    endif()
+  endforeach()
+  if(missing)
+    message(FATAL_ERROR "test sources not registered with sonarloop_add_test: ${missing}")
+  endif()
 endfunction()

@@ -1,7 +1,9 @@
 // The pacing rules with a simulated clock: no sleeping, no wall clock.
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cstdint>
 #include <stdexcept>
+#include <thread>
 
 #include "emulator/pacer.h"
 #include "sim/core/rng.h"
@@ -141,13 +143,29 @@ TEST_CASE("parse_rate: realtime, max and factors; anything else is an error nami
   }
 }
 
-TEST_CASE("Wakeup: a notify ends a wait early; a past deadline returns at once") {
+TEST_CASE("Wakeup: a notify ends a wait early; a deadline ends it otherwise, not before") {
   Wakeup w;
   const auto seen = w.generation();
   w.notify();
   w.wait_until(Wakeup::kForever, seen);  // returns: generation changed
   CHECK(w.generation() == seen + 1);
+  // another thread's notify ends a wait without a deadline
+  const auto g = w.generation();
+  std::thread notifier([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    w.notify();
+  });
+  w.wait_until(Wakeup::kForever, g);
+  CHECK(w.generation() == g + 1);
+  notifier.join();
+  // no notify: the wait ends at its deadline (MonotonicClock's time base), not earlier
   MonotonicClock clock;
-  w.wait_until(clock.now_ns() - 1, w.generation());  // deadline passed: returns
-  SUCCEED();
+  const auto g2 = w.generation();
+  const std::int64_t deadline = clock.now_ns() + 20'000'000;
+  w.wait_until(deadline, g2);
+  CHECK(clock.now_ns() >= deadline);
+  CHECK(w.generation() == g2);
+  // a deadline already passed returns without a notify
+  w.wait_until(clock.now_ns() - 1, g2);
+  CHECK(w.generation() == g2);
 }

@@ -27,6 +27,10 @@ class Gate {
     cv_.wait(lock, [&] { return go_ || cancelled_; });
   }
   void cancel() { set(cancelled_); }
+  bool cancelled() {
+    std::lock_guard<std::mutex> lock(mu_);
+    return cancelled_;
+  }
   void let_go() { set(go_); }
   // true once a producer is waiting at the gate (gives up after 20 s)
   bool entered() {
@@ -63,6 +67,7 @@ class FakeProducer final : public PingProducer {
   void cancel() override { gate_.cancel(); }
   void let_go() { gate_.let_go(); }
   bool wait_in_slow() { return gate_.entered(); }
+  bool cancelled() { return gate_.cancelled(); }
   std::atomic<int> produced_{0};
   std::atomic<std::int64_t> highest_{-1};
 
@@ -226,8 +231,10 @@ TEST_CASE("RenderQueue: stop() returns while a producer is blocked") {
   FakeProducer p(/*slow=*/0);
   RenderQueue q(p, 2, 2, 16);
   q.start(0);
-  q.stop();  // cancel() releases the blocked producer
-  SUCCEED();
+  REQUIRE(p.wait_in_slow());  // a worker is blocked inside ping 0
+  q.stop();                   // cancel() releases it; the workers are joined
+  CHECK(p.cancelled());
+  CHECK_FALSE(q.failed());
 }
 
 TEST_CASE("RenderQueue: work for later pings runs after the ping is handed over") {

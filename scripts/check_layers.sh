@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# Fails when a source file includes a header of a layer it may not depend on.
+#   sim      <- sim only (no sockets, files or wall clock: design rule)
+#   drivers  <- drivers only
+#   config   <- config, sim (it loads YAML into sim's descriptions)
+#   emulator <- emulator, sim, drivers
+#   atr      <- atr, drivers (the onboard side must not link the simulator)
+#   tools    <- anything
+# KNOWN lists the crossings that exist today and are to be removed (issue "Clean seams"); a new
+# crossing fails, and so does a listed one that is gone (so the list only shrinks).
+# Usage: scripts/check_layers.sh [SOURCE_ROOT]
+set -euo pipefail
+root=${1:-$(cd "$(dirname "$0")/.." && pwd)}
+cd "$root"
+
+declare -A allowed=(
+  [sim]="sim"
+  [drivers]="drivers"
+  [config]="config sim"
+  [emulator]="emulator sim drivers"
+  [atr]="atr drivers"
+)
+
+KNOWN=(
+  "emulator/emulator.h -> config/loader/scenario_loader.h"
+  "atr/chip_cutter.h -> sim/render/chip_renderer.h"
+  "atr/sweep.h -> sim/render/chip_renderer.h"
+  "atr/waterfall.h -> sim/core/geodesy.h"
+  "atr/onboard_pipeline.cpp -> sim/targets/target_type.h"
+  "atr/subspace_classifier.cpp -> sim/targets/target_type.h"
+)
+
+found=()
+for layer in "${!allowed[@]}"; do
+  while IFS= read -r line; do
+    file=${line%%:*}
+    [[ $line =~ \#include\ \"([^\"]+)\" ]] || continue
+    header=${BASH_REMATCH[1]}
+    top=${header%%/*}
+    ok=0
+    for a in ${allowed[$layer]}; do
+      [ "$top" = "$a" ] && ok=1
+    done
+    [ $ok = 1 ] || found+=("$file -> $header")
+  done < <(grep -rHE '^#include "[a-z_]+/' "$layer" --include='*.h' --include='*.cpp' || true)
+done
+
+status=0
+for f in "${found[@]}"; do
+  known=0
+  for k in "${KNOWN[@]}"; do [ "$f" = "$k" ] && known=1; done
+  if [ $known = 0 ]; then
+    echo "layer violation: $f" >&2
+    status=1
+  fi
+done
+for k in "${KNOWN[@]}"; do
+  still=0
+  for f in "${found[@]}"; do [ "$f" = "$k" ] && still=1; done
+  if [ $still = 0 ]; then
+    echo "gone (remove it from KNOWN in $0): $k" >&2
+    status=1
+  fi
+done
+if [ $status = 0 ]; then
+  echo "layers: ${#found[@]} known crossings left, no new ones"
+fi
+exit $status

@@ -45,19 +45,23 @@ for layer in "${!allowed[@]}"; do
   done < <(grep -rHE '^#include "[a-z_]+/' "$layer" --include='*.h' --include='*.cpp' || true)
 done
 
+# contains NEEDLE ITEMS...: true if NEEDLE is one of ITEMS
+contains() {
+  local needle=$1
+  shift
+  for item in "$@"; do [ "$item" = "$needle" ] && return 0; done
+  return 1
+}
+
 status=0
 for f in "${found[@]}"; do
-  known=0
-  for k in "${KNOWN[@]}"; do [ "$f" = "$k" ] && known=1; done
-  if [ $known = 0 ]; then
+  if ! contains "$f" "${KNOWN[@]}"; then
     echo "layer violation: $f" >&2
     status=1
   fi
 done
 for k in "${KNOWN[@]}"; do
-  still=0
-  for f in "${found[@]}"; do [ "$f" = "$k" ] && still=1; done
-  if [ $still = 0 ]; then
+  if ! contains "$k" "${found[@]}"; then
     echo "gone (remove it from KNOWN in $0): $k" >&2
     status=1
   fi

@@ -124,7 +124,9 @@ SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettin
     e.title = "Fig. 11: identification from highlights against pixel resolution";
     e.conditions = resolution_curve(s, highlight_resolutions_cm());
   } else if (name == "fig13") {
+    // Sec. 4.1.2: the mine-like Manta, Rockan and cylinder against the non-mine shapes
     e.title = "Fig. 13: mine-like and non-mine targets, identification and mine / non-mine";
+    e.classes = {TargetType::kManta, TargetType::kRockan, TargetType::kCylinder};
     e.classes.insert(e.classes.end(), s.non_mine.begin(), s.non_mine.end());
     e.mine_groups = true;
     e.conditions = resolution_curve(s, highlight_resolutions_cm());

@@ -16,8 +16,9 @@
 // The experiments (names for --experiment):
 //   fig11       Fig. 11: Manta, Rockan, cuboid, cylinder from highlights, 15 resolutions
 //               3-30 cm; misidentification per target against R.
-//   fig13       Fig. 13: the four mine-like targets and three non-mine shapes; identification,
-//               then the mine / non-mine decision error (Section 4.1.2) against R.
+//   fig13       Fig. 13 (Sec. 4.1.2): mine-like Manta, Rockan, cylinder and the four non-mine
+//               shapes (cuboid 100 x 50 x 40 cm, hemispheres of 100 and 50 cm, box 70 x 70 x 40
+//               cm); identification among the seven, then the mine / non-mine decision error.
 //   fig15       Fig. 15: the four targets from their shadows (ChipKind::kShadow), 5-30 cm.
 //   aspect      error against the target's aspect, one subspace per target against several
 //               subspaces per target, each for an aspect sector (the paper's remedy).
@@ -62,10 +63,10 @@ struct SweepSettings {
   int test_count = 100;  // per class and condition (the paper: 10,000)
   int p = kDefaultSubspaceDim;
   std::vector<double> resolutions_cm;  // empty: each experiment's own list
-  // fig13's non-mine shapes (sim/targets/target_type.h)
-  std::vector<targets::TargetType> non_mine = {targets::TargetType::kLargeCuboid,
-                                               targets::TargetType::kHemisphere,
-                                               targets::TargetType::kBox};
+  // fig13's non-mine shapes (sim/targets/target_type.h); default: the paper's four
+  std::vector<targets::TargetType> non_mine = {
+      targets::TargetType::kLargeCuboid, targets::TargetType::kHemisphere,
+      targets::TargetType::kSmallHemisphere, targets::TargetType::kBox};
   std::vector<render::DatasetSeabed> seabeds;  // must not be empty
   render::SonarDesc sonar;
   render::RendererKind renderer = render::RendererKind::kProfile;

@@ -364,8 +364,9 @@ interval, the confusion matrix, render and classification time per chip.
 
 experiments (--experiment, repeatable, or 'all'; default fig11):
   fig11       Manta, Rockan, cuboid, cylinder from highlights, 15 resolutions 3-30 cm (Fig. 11)
-  fig13       the same four plus three non-mine shapes (--non-mine): identification and the
-              mine / non-mine decision error against resolution (Fig. 13)
+  fig13       mine-like Manta, Rockan, cylinder and four non-mine shapes (--non-mine): the
+              identification among the seven and the mine / non-mine decision error against
+              resolution (Fig. 13, Sec. 4.1.2)
   fig15       the four targets from their shadows, 5-30 cm (Fig. 15)
   aspect      error per 30 deg of target aspect, one subspace per target against 4 and 8
               aspect-sector subspaces, trained on 2 x --train-count chips per target
@@ -398,7 +399,8 @@ options:
   --threads N          render threads (default: all cores)
   --out DIR            output folder (default sweep_out)
   --seabed LIST        seabed kinds: flat, ripples, clutter, rocky (default flat,ripples,clutter)
-  --non-mine LIST      fig13's non-mine shapes (default large_cuboid,hemisphere,box)
+  --non-mine LIST      fig13's non-mine shapes (default: the paper's
+                       large_cuboid,hemisphere,small_hemisphere,box)
   --sonar NAME|FILE    sonar preset or YAML (default pailhas_strip; bin and pulse set per R)
   --no-plot            do not run the chart script
   --renderer R         profile (default: heightfield profile renderer) or raytrace (Embree)

@@ -73,7 +73,17 @@ TEST_CASE("experiments: the paper's figures and the stability studies", "[sweep]
   CHECK(f11.conditions[2].train_count == 80);
 
   const SweepExperiment f13 = make_sweep_experiment("fig13", s);
-  CHECK(f13.classes.size() == 7);
+  // Sec. 4.1.2: mine-like Manta, Rockan, cylinder; non-mine cuboid 100 x 50 x 40 cm, hemispheres
+  // of 100 and 50 cm, box 70 x 70 x 40 cm
+  CHECK(f13.classes == std::vector<TargetType>{TargetType::kManta, TargetType::kRockan,
+                                               TargetType::kCylinder, TargetType::kLargeCuboid,
+                                               TargetType::kHemisphere,
+                                               TargetType::kSmallHemisphere, TargetType::kBox});
+  for (TargetType t : f13.classes) {
+    const auto& info = targets::target_type_info(t);
+    CHECK(info.mine_like ==
+          (t == TargetType::kManta || t == TargetType::kRockan || t == TargetType::kCylinder));
+  }
   CHECK(f13.mine_groups);
   const SweepExperiment f15 = make_sweep_experiment("fig15", s);
   CHECK(f15.kind == render::ChipKind::kShadow);

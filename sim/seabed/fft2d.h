@@ -19,10 +19,16 @@ class Fft2d {
   // In place on n*n values. forward: unnormalised; inverse: divides by n*n.
   void forward(std::vector<std::complex<float>>& data);
   void inverse(std::vector<std::complex<float>>& data);
+  // inverse() computing only rows [row0, row0 + count) of the result (the others are left
+  // undefined): an overlap-save convolution keeps only its valid rows, and the last pass of
+  // FFTs and the transpose before it shrink with them.
+  void inverse_rows(std::vector<std::complex<float>>& data, int row0, int count);
 
  private:
-  void rows(std::vector<std::complex<float>>& data, bool inverse);
-  void transpose(std::vector<std::complex<float>>& data);
+  // 1-D FFTs of rows [r0, r1)
+  void rows(std::vector<std::complex<float>>& data, bool inverse, std::size_t r0, std::size_t r1);
+  // rows [r0, r1) of the transpose (the whole transpose for 0, n)
+  void transpose(std::vector<std::complex<float>>& data, std::size_t r0, std::size_t r1);
 
   int n_;
   std::vector<std::complex<float>> scratch_;

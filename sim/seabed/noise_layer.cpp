@@ -179,7 +179,7 @@ std::shared_ptr<const NoiseLayer::TilePair> NoiseLayer::make_pair(std::int64_t t
   const auto& ks = kernel_->spectrum;
   for (std::size_t n = 0; n < buf.size(); ++n)
     buf[n] *= ks[n];
-  fft.inverse(buf);
+  fft.inverse_rows(buf, k / 2, k);  // the valid rows: the tile's K rows
   auto out = std::make_shared<TilePair>();
   const auto kk = static_cast<std::size_t>(k);
   out->even.resize(kk * kk);

@@ -83,6 +83,12 @@ std::unique_ptr<NoiseLayer> make_rocky(const scene::SceneDesc& desc, std::size_t
   return std::make_unique<NoiseLayer>(std::move(s));
 }
 
+void check_level(int level) {
+  if (level < 0 || level > kMaxSeabedLevel) {
+    throw std::out_of_range("seabed detail level " + std::to_string(level) + " is outside 0.." +
+                            std::to_string(kMaxSeabedLevel));
+  }
+}
 }  // namespace
 
 SeabedModel::SeabedModel(const scene::SceneDesc& desc, SeabedOptions options)
@@ -124,18 +130,12 @@ double SeabedModel::base_elevation(double x, double y) const {
 
 std::shared_ptr<const HeightTile> SeabedModel::tile(std::int64_t ti, std::int64_t tj,
                                                     int level) const {
-  if (level < 0 || level > kMaxSeabedLevel) {
-    throw std::out_of_range("seabed detail level " + std::to_string(level) + " is outside 0.." +
-                            std::to_string(kMaxSeabedLevel));
-  }
+  check_level(level);
   return cache_.get({ti, tj, level}, [&] { return make_tile(ti, tj, level); });
 }
 
 void SeabedModel::prefetch_tile(std::int64_t ti, std::int64_t tj, int level) const {
-  if (level < 0 || level > kMaxSeabedLevel) {
-    throw std::out_of_range("seabed detail level " + std::to_string(level) + " is outside 0.." +
-                            std::to_string(kMaxSeabedLevel));
-  }
+  check_level(level);
   cache_.prefetch({ti, tj, level}, [&] { return make_tile(ti, tj, level); });
 }
 

@@ -50,6 +50,7 @@ int bytes_per_sample(render::SampleType t) {
     case render::SampleType::kUint8:
       return 1;
     case render::SampleType::kUint16:
+    case render::SampleType::kInt16:
       return 2;
     case render::SampleType::kFloat32:
       return 4;
@@ -63,6 +64,8 @@ const char* sample_type_name(render::SampleType t) {
       return "uint8";
     case render::SampleType::kUint16:
       return "uint16";
+    case render::SampleType::kInt16:
+      return "int16";
     case render::SampleType::kFloat32:
       return "float32";
   }

@@ -40,6 +40,7 @@ SampleCoding sample_coding(render::SampleType type) {
     case render::SampleType::kUint8:
       return {1, xtf::kSampleFormatInt8};
     case render::SampleType::kUint16:
+    case render::SampleType::kInt16:
       return {2, xtf::kSampleFormatInt16};
     case render::SampleType::kFloat32:
       return {4, xtf::kSampleFormatIeeeFloat32};
@@ -118,6 +119,7 @@ void fill_channel(const render::SonarSetup& s, const xtf::XtfChanInfo& info,
       store_line<std::uint8_t>(s, line, info, ch);
       break;
     case render::SampleType::kUint16:
+    case render::SampleType::kInt16:  // 0 .. 32767: the same bytes as a signed 16-bit sample
       store_line<std::uint16_t>(s, line, info, ch);
       break;
     case render::SampleType::kFloat32:

@@ -12,9 +12,11 @@
 //   TimeDelay = 0. In the file the PORT samples are stored far range first (reversed), starboard
 //   nadir first (formats.md 1.7; xtf::stored_far_to_near).
 // - Sample type (SonarDesc::sample_type) -> CHANINFO BytesPerSample / SampleFormat:
-//   uint8 -> 1 / 8, uint16 -> 2 / 3, float32 -> 4 / 5 (IEEE float). X41 calls 8 and 3 "int8"
-//   and "int16"; readers (pyxtf) read them unsigned, and the samples are unsigned envelope values
-//   (UniPolar = 1), full scale = VoltScale 5 V. Float samples are amplitudes re full scale.
+//   uint8 -> 1 / 8, uint16 -> 2 / 3, int16 -> 2 / 3, float32 -> 4 / 5 (IEEE float). X41 calls 8
+//   and 3 "int8" and "int16"; readers (pyxtf) read them unsigned, and the samples are unsigned
+//   envelope values (UniPolar = 1), full scale = VoltScale 5 V. int16 keeps them within 0 ..
+//   32767, so a reader that takes format 3 as signed reads them right too (as the Sea Scan file
+//   in tests/data/xtf). Float samples are amplitudes re full scale.
 // - Sound speed: SoundVelocity = 750 m/s (Isis' one-way convention, formats.md 1.5, 1.9) and
 //   TimeDuration = SlantRange / 750, so that TimeDuration·SoundVelocity = SlantRange for any
 //   reader; the real sound speed goes to ComputedSoundVelocity.

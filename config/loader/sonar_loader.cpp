@@ -144,8 +144,9 @@ enum class TvgChoice { kAuto, kArea, kPoint, kSpherical };
 
 constexpr std::array<Word<AlongTrackModel>, 2> kAlongTrackWords{
     {{"beam", AlongTrackModel::kBeam}, {"strip", AlongTrackModel::kStrip}}};
-constexpr std::array<Word<SampleType>, 3> kSampleTypeWords{{{"uint8", SampleType::kUint8},
+constexpr std::array<Word<SampleType>, 4> kSampleTypeWords{{{"uint8", SampleType::kUint8},
                                                             {"uint16", SampleType::kUint16},
+                                                            {"int16", SampleType::kInt16},
                                                             {"float32", SampleType::kFloat32}}};
 constexpr std::array<Word<TvgChoice>, 4> kTvgWords{{{"auto", TvgChoice::kAuto},
                                                     {"area", TvgChoice::kArea},

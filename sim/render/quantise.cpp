@@ -8,6 +8,9 @@
 namespace sonarloop::render {
 namespace {
 
+// The largest value of a signed 16-bit sample (SampleType::kInt16).
+constexpr double kInt16FullScale = 32767.0;
+
 // TVG gain as a linear intensity factor at the centre of every bin would be recomputed per
 // sample; it is cheap (one log and one exp) next to rendering, so no table is kept.
 template <class T>
@@ -49,7 +52,8 @@ void quantise_line(const SonarSetup& s, std::span<const float> in, std::span<std
 }
 
 void quantise_line(const SonarSetup& s, std::span<const float> in, std::span<std::uint16_t> out) {
-  quantise(s, in, out, 65535.0, true);
+  const double full_scale = s.desc.sample_type == SampleType::kInt16 ? kInt16FullScale : 65535.0;
+  quantise(s, in, out, full_scale, true);
 }
 
 void quantise_line(const SonarSetup& s, std::span<const float> in, std::span<float> out) {

@@ -4,7 +4,8 @@
 //
 //   L(r)  = 10·log10 I(r) + TVG(r)                (TVG law of the sonar, acoustics/tvg.h)
 //   A(r)  = 10^((L(r) - L_fs + gain_db)/20)        amplitude relative to full scale
-//   sample = round(A · full_scale), clipped to [0, full_scale]   (uint8: 255, uint16: 65535)
+//   sample = round(A · full_scale), clipped to [0, full_scale]   (uint8: 255, uint16: 65535,
+//            int16: 32767, the largest value of a signed 16-bit sample)
 //            A itself for float samples (not clipped)
 //
 // The full-scale level L_fs is the TVG-corrected echo of a seabed patch with backscattering
@@ -31,6 +32,8 @@ double relative_amplitude(const SonarSetup& sonar, double intensity, double rang
 // range (k + 0.5)·bin_size_m.
 void quantise_line(const SonarSetup& sonar, std::span<const float> intensity,
                    std::span<std::uint8_t> out);
+// 16-bit samples: full scale 65535 (SampleType::kUint16) or 32767 (SampleType::kInt16, the
+// values are non-negative and fit a signed 16-bit sample as well).
 void quantise_line(const SonarSetup& sonar, std::span<const float> intensity,
                    std::span<std::uint16_t> out);
 void quantise_line(const SonarSetup& sonar, std::span<const float> intensity, std::span<float> out);

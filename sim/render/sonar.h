@@ -15,7 +15,10 @@
 
 namespace sonarloop::render {
 
-enum class SampleType { kUint8, kUint16, kFloat32 };
+// kInt16: 16-bit samples of the X41 "int16" format (SampleFormat 3) kept within the signed
+// range, full scale 32767, as Sea Scan recorders write them (tests/data/xtf/scotsman-iver2.xtf:
+// no sample above 32767). kUint16 uses the whole unsigned range, full scale 65535.
+enum class SampleType { kUint8, kUint16, kFloat32, kInt16 };
 
 // How the along-track (horizontal) beam is modelled.
 enum class AlongTrackModel {

@@ -164,8 +164,8 @@ TEST_CASE("scenario_loader: errors in the sonar section name their path") {
   CHECK(i.suggestion == "frequency_khz");
   i = expect_error("sonar: sidescan_450\n", "sonar",
                    {"'sidescan_450' is not a sonar preset",
-                    "allowed: sidescan_100khz, sidescan_450khz, sas_3cm, pailhas_strip, or a map "
-                    "of sonar keys"});
+                    "allowed: sidescan_100khz, sidescan_450khz, sas_3cm, pailhas_strip, "
+                    "iver2_600khz, or a map of sonar keys"});
   CHECK(i.suggestion == "sidescan_450khz");
   expect_error("sonar:\n  preset: nope\n", "sonar.preset", {"'nope' is not a sonar preset"});
   expect_error("sonar: [1, 2]\n", "sonar", {"is not a sonar preset name or a map"});

@@ -32,7 +32,7 @@ namespace scene = sonarloop::scene;
 namespace {
 
 const std::vector<std::string> kPresetNames = {"sidescan_100khz", "sidescan_450khz", "sas_3cm",
-                                               "pailhas_strip"};
+                                               "pailhas_strip", "iver2_600khz"};
 
 // every sonar key, in the documented order
 const std::vector<std::string> kKeys = {"name",
@@ -237,6 +237,7 @@ TEST_CASE("sonar_loader: every word of the enumerated keys") {
   CHECK(at("along_track", "strip").along_track == render::AlongTrackModel::kStrip);
   CHECK(at("sample_type", "uint8").sample_type == render::SampleType::kUint8);
   CHECK(at("sample_type", "uint16").sample_type == render::SampleType::kUint16);
+  CHECK(at("sample_type", "int16").sample_type == render::SampleType::kInt16);
   CHECK(at("sample_type", "float32").sample_type == render::SampleType::kFloat32);
   CHECK(at("tvg", "auto").tvg == std::nullopt);
   CHECK(at("tvg", "area").tvg == acoustics::TvgLaw::kArea);
@@ -318,6 +319,9 @@ TEST_CASE("sonar_loader: the presets' documented numbers") {
       {"sas_3cm", 100e3, 1.0, 75, 0.03, 30e3, render::AlongTrackModel::kStrip, 2500, 0.761, 49.1},
       {"pailhas_strip", 300e3, 0.5, 50, 0.05, 0, render::AlongTrackModel::kStrip, 1000, 0.508,
        43.3},
+      // the real Iver2 / Sea Scan file's 1024 samples over 29.9835 m
+      {"iver2_600khz", 600e3, 0.5, 29.9835015, 0.029280763, 0, render::AlongTrackModel::kBeam, 1024,
+       0.254, 25.59},
   };
   for (const auto& r : rows) {
     INFO(r.name);
@@ -325,7 +329,7 @@ TEST_CASE("sonar_loader: the presets' documented numbers") {
     CHECK(d.frequency_hz == r.freq_hz);
     CHECK(d.array_length_m == r.length_m);
     CHECK(d.max_range_m == r.range_m);
-    CHECK(d.bin_size_m == r.bin_m);
+    CHECK(d.bin_size_m == Approx(r.bin_m).epsilon(1e-15));  // cm -> m may round the last bit
     CHECK(d.chirp_bandwidth_hz == r.chirp_hz);
     CHECK(d.along_track == r.model);
     const double c = kNominalSoundSpeed_m_s;
@@ -338,8 +342,12 @@ TEST_CASE("sonar_loader: the presets' documented numbers") {
     if (d.along_track == render::AlongTrackModel::kStrip) {
       CHECK(setup.along_track_resolution_m == d.bin_size_m);  // isotropic pixels
     }
-    // range resolution: one bin for the auto CW pulse; c/(2B) = 2.5 cm for the SAS chirp
-    const double expect_res = r.chirp_hz > 0 ? setup.sound_speed_m_s / (2 * r.chirp_hz) : r.bin_m;
+    // range resolution: one bin for the auto CW pulse, c·tau/2 for a given one; c/(2B) = 2.5 cm
+    // for the SAS chirp
+    const double expect_res = r.chirp_hz > 0 ? setup.sound_speed_m_s / (2 * r.chirp_hz)
+                              : d.pulse_length_s > 0.0
+                                  ? setup.sound_speed_m_s * d.pulse_length_s / 2
+                                  : r.bin_m;
     CHECK(setup.range_resolution_m == Approx(expect_res).epsilon(1e-12));
   }
   // the 100 kHz beam: 1.2 m along track at 150 m (two-way width), as documented
@@ -375,7 +383,8 @@ TEST_CASE("sonar_loader: a preset with overrides") {
 TEST_CASE("sonar_loader: unknown presets list the available names") {
   auto i = expect_error("preset: sidescan_100\n", "preset",
                         {"'sidescan_100' is not a sonar preset", "(line 1, column 9)",
-                         "allowed: sidescan_100khz, sidescan_450khz, sas_3cm, pailhas_strip"});
+                         "allowed: sidescan_100khz, sidescan_450khz, sas_3cm, pailhas_strip, "
+                         "iver2_600khz"});
   CHECK(i.suggestion == "sidescan_100khz");
   // a preset name as the whole node: a map is allowed too
   i = expect_error("sas3cm\n", "", {"'sas3cm' is not a sonar preset", "or a map of sonar keys"});
@@ -389,7 +398,7 @@ TEST_CASE("sonar_loader: unknown presets list the available names") {
   } catch (const ConfigError& e) {
     const std::string msg = e.what();
     CHECK(msg.rfind("<built-in sonars>: preset: 'pailhas' is not a sonar preset; allowed: "
-                    "sidescan_100khz, sidescan_450khz, sas_3cm, pailhas_strip",
+                    "sidescan_100khz, sidescan_450khz, sas_3cm, pailhas_strip, iver2_600khz",
                     0) == 0);
   }
   CHECK_THROWS_AS(builtin_sonar(""), ConfigError);
@@ -430,7 +439,7 @@ TEST_CASE("sonar_loader: wrong types") {
                         {"'beams' is not a known along-track model", "allowed: beam, strip"});
   CHECK(i.suggestion == "beam");
   i = expect_error("sample_type: uint32\n", "sample_type",
-                   {"is not a sample type", "allowed: uint8, uint16, float32"});
+                   {"is not a sample type", "allowed: uint8, uint16, int16, float32"});
   CHECK(i.suggestion == "uint16");
   expect_error("tvg: 30log\n", "tvg",
                {"is not a TVG law", "allowed: auto, area, point, spherical"});
@@ -656,7 +665,7 @@ const std::vector<KeySpec>& key_specs() {
       {"ping_period_s", Kind::kReal, 0, 10, {}},
       {"along_track", Kind::kWord, 0, 0, {"beam", "strip"}},
       {"along_track_resolution_cm", Kind::kReal, 0, 500, {}},
-      {"sample_type", Kind::kWord, 0, 0, {"uint8", "uint16", "float32"}},
+      {"sample_type", Kind::kWord, 0, 0, {"uint8", "uint16", "int16", "float32"}},
       {"tvg", Kind::kWord, 0, 0, {"auto", "area", "point", "spherical"}},
       {"gain_db", Kind::kReal, -100, 100, {}},
       {"bottom_model", Kind::kWord, 0, 0, {"apl", "lambert"}},
@@ -708,6 +717,7 @@ void apply(render::SonarDesc& d, const std::string& key, const std::string& text
   } else if (key == "sample_type") {
     d.sample_type = text == "uint8"    ? render::SampleType::kUint8
                     : text == "uint16" ? render::SampleType::kUint16
+                    : text == "int16"  ? render::SampleType::kInt16
                                        : render::SampleType::kFloat32;
   } else if (key == "tvg") {
     if (text == "auto") d.tvg = std::nullopt;

@@ -74,6 +74,7 @@ struct TypeCase {
 constexpr TypeCase kTypeCases[] = {
     {SampleType::kUint8, 1, xtf::kSampleFormatInt8, "uint8"},
     {SampleType::kUint16, 2, xtf::kSampleFormatInt16, "uint16"},
+    {SampleType::kInt16, 2, xtf::kSampleFormatInt16, "int16"},
     {SampleType::kFloat32, 4, xtf::kSampleFormatIeeeFloat32, "float32"},
 };
 
@@ -174,7 +175,12 @@ void check_samples(const render::SonarSetup& s, const render::PingLines& lines,
   std::sort(sorted.begin(), sorted.end());
   CHECK(std::unique(sorted.begin(), sorted.end()) - sorted.begin() > 50);
   CHECK(port.front() == T(0));
-  if constexpr (!std::is_same_v<T, float>) CHECK(port.back() == std::numeric_limits<T>::max());
+  if constexpr (!std::is_same_v<T, float>) {
+    // clipping at full scale: the type's maximum, or 32767 for int16 samples
+    const T full_scale =
+        s.desc.sample_type == SampleType::kInt16 ? T(32767) : std::numeric_limits<T>::max();
+    CHECK(port.back() == full_scale);
+  }
 
   // in the file: port samples far range first, starboard nadir first
   REQUIRE(decoded.channels.size() == 2);
@@ -212,6 +218,7 @@ void check_samples_of_type(SampleType type, const render::SonarSetup& s,
       check_samples<std::uint8_t>(s, lines, h, bytes, decoded);
       break;
     case SampleType::kUint16:
+    case SampleType::kInt16:
       check_samples<std::uint16_t>(s, lines, h, bytes, decoded);
       break;
     case SampleType::kFloat32:

@@ -72,6 +72,25 @@ TEST_CASE("quantise: full scale, -20 dB and clipping for every sample type") {
   }
 }
 
+TEST_CASE("quantise: int16 samples reach 32767 at full scale and clip there") {
+  const SonarSetup s = setup_for(AlongTrackModel::kBeam, SampleType::kInt16);
+  std::vector<float> in(s.bins);
+  for (int k = 0; k < s.bins; ++k) {
+    const double r = (k + 0.5) * s.desc.bin_size_m;
+    in[k] = intensity_at(s, r, k % 3 == 0 ? 0.0 : (k % 3 == 1 ? -20.0 : 10.0));
+  }
+  std::vector<std::uint16_t> q(s.bins);
+  quantise_line(s, in, q);
+  for (int k = 0; k < s.bins; ++k) {
+    INFO("bin " << k);
+    if (k % 3 == 1) {
+      CHECK(std::abs(q[k] - 3276.7) <= 1.0);
+    } else {
+      CHECK(q[k] == 32767);  // full scale, or clipped: never beyond the signed range
+    }
+  }
+}
+
 TEST_CASE("quantise: gain shifts the level, zero intensity stays zero") {
   const SonarSetup s0 = setup_for(AlongTrackModel::kStrip, SampleType::kFloat32, 0.0);
   const SonarSetup s6 = setup_for(AlongTrackModel::kStrip, SampleType::kFloat32, 6.0);

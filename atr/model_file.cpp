@@ -144,7 +144,7 @@ ClassModel read_class(Reader& r, const Model& m, const char* kind, std::size_t i
     r.fail(label + " '" + c.name + "': subspace count " + std::to_string(count) +
            " (allowed 1 to the aspect sector count " + std::to_string(m.aspect_sectors) + ")");
   }
-  const std::size_t n = m.pixel_count();
+  const std::size_t n = m.feature_count();
   for (std::uint32_t s = 0; s < count; ++s) {
     Subspace sub;
     sub.aspect_min_deg = r.f64("aspect_min_deg");
@@ -202,10 +202,18 @@ std::vector<std::uint8_t> encode_model(const Model& m) {
   w.u32(static_cast<std::uint32_t>(m.classes.size()));
   w.u32(static_cast<std::uint32_t>(m.groups.size()));
   w.u32(0);
+  // version 2: the pre-processing record
+  w.f64(m.preprocess.crop_fraction);
+  w.u32(static_cast<std::uint32_t>(m.preprocess.multilook_px));
+  w.u8(static_cast<std::uint8_t>(m.preprocess.levels));
+  w.u8(0);
+  w.u8(0);
+  w.u8(0);
+  w.f64(m.preprocess.threshold_db);
   for (const auto& c : m.classes)
-    write_class(w, c, m.pixel_count());
+    write_class(w, c, m.feature_count());
   for (const auto& g : m.groups)
-    write_class(w, g, m.pixel_count());
+    write_class(w, g, m.feature_count());
   w.u32(crc32(w.data()));
   return std::move(w.data());
 }
@@ -219,9 +227,9 @@ Model decode_model(std::span<const std::uint8_t> bytes, const std::string& name)
   r.str(sizeof kModelFileMagic, "magic");
   r.u8("reserved byte");
   const std::uint16_t version = r.u16("format version");
-  if (version != kModelFileVersion) {
-    r.fail("unsupported format version " + std::to_string(version) + " (this build reads version " +
-           std::to_string(kModelFileVersion) + ")");
+  if (version != 1 && version != kModelFileVersion) {
+    r.fail("unsupported format version " + std::to_string(version) +
+           " (this build reads versions 1 and " + std::to_string(kModelFileVersion) + ")");
   }
   // the checksum over everything but the trailer; judged after parsing, so that a truncated
   // file is reported where it ends, and a parse error can say whether the bytes are corrupt
@@ -254,6 +262,22 @@ Model decode_model(std::span<const std::uint8_t> bytes, const std::string& name)
     m.chip_height = static_cast<int>(h);
     m.p = static_cast<int>(p);
     m.aspect_sectors = static_cast<int>(sectors);
+    if (version >= 2) {  // version 1 models have no pre-processing (the identity)
+      m.preprocess.crop_fraction = r.f64("crop fraction");
+      const std::uint32_t looks = r.u32("multilook window");
+      const std::uint8_t levels = r.u8("levels mode");
+      r.u8("reserved byte");
+      r.u8("reserved byte");
+      r.u8("reserved byte");
+      m.preprocess.threshold_db = r.f64("three-level threshold");
+      m.preprocess.multilook_px = static_cast<int>(std::min<std::uint32_t>(looks, 1u << 20));
+      m.preprocess.levels = static_cast<ChipLevels>(levels);
+      try {
+        validate_preprocess(m.preprocess);
+      } catch (const std::invalid_argument& e) {
+        r.fail(e.what());
+      }
+    }
     for (std::uint32_t c = 0; c < classes; ++c)
       m.classes.push_back(read_class(r, m, "class", c));
     for (std::uint32_t g = 0; g < groups; ++g)

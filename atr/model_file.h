@@ -1,7 +1,8 @@
 #pragma once
 // The classifier's model file (.slpca): a versioned little-endian binary format.
 //
-// Version 1 layout (all integers unsigned little-endian, floats IEEE 754 little-endian):
+// Version 2 layout (all integers unsigned little-endian, floats IEEE 754 little-endian); version
+// 1 is the same without the pre-processing record (read as no pre-processing):
 //
 //   header, 36 bytes
 //     0   u8[5]  magic "SLPCA"
@@ -14,6 +15,12 @@
 //    24   u32    class count C (>= 1)
 //    28   u32    group count G (0, or 2: "mine" then "non_mine", Section 4.1.2)
 //    32   u32    0 (reserved)
+//   pre-processing record, 24 bytes (version 2; atr/chip_preprocess.h)
+//    36   f64    crop fraction (0, 1]
+//    44   u32    multilook window k (odd)
+//    48   u8     levels mode (0 db, 1 above_seabed, 2 below_seabed, 3 three_level)
+//    49   u8[3]  0 (reserved)
+//    52   f64    three-level threshold (dB)
 //   C class records, then G group records, each:
 //     u16    name length L (1 to 255), then L bytes of name (UTF-8, no terminator)
 //     u8     mine_like (0 or 1)
@@ -24,7 +31,8 @@
 //       u32      train_count k (>= 1)
 //       u32      rank r (<= p, <= k - 1)
 //       f64[r]   Gram eigenvalues, descending
-//       f32[n]   mean image mu, row-major pixel order (eq. 8)
+//       f32[n]   mean image mu, row-major pixel order (eq. 8); n is the pre-processed
+//                (cropped) chip's pixel count
 //       f32[r*n] basis U, column by column: the n values of eigenvector 0, then 1, ...
 //   trailer
 //     u32    CRC-32 (IEEE 802.3 polynomial, as zlib's crc32) of every preceding byte
@@ -42,7 +50,7 @@
 
 namespace sonarloop::atr {
 
-inline constexpr std::uint16_t kModelFileVersion = 1;
+inline constexpr std::uint16_t kModelFileVersion = 2;
 inline constexpr char kModelFileMagic[5] = {'S', 'L', 'P', 'C', 'A'};
 
 // The file's bytes for a (valid) model. Throws std::runtime_error if validate_model() fails.

@@ -21,7 +21,7 @@ std::string subspace_label(const ClassModel& c, std::size_t s) {
 }
 
 void validate_class(const ClassModel& c, const Model& m, const std::string& what) {
-  const auto n = static_cast<Eigen::Index>(m.pixel_count());
+  const auto n = static_cast<Eigen::Index>(m.feature_count());
   if (c.name.empty()) throw std::runtime_error(what + ": empty class name");
   if (c.subspaces.empty()) {
     throw std::runtime_error(what + " '" + c.name + "' has no subspace");
@@ -89,8 +89,11 @@ Prepared prepare(std::span<const LabelledChip> chips, const TrainOptions& opt,
   if (!first.ok()) {
     throw std::runtime_error("training chip '" + chips[0].source + "': " + first.reason());
   }
-  const auto n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+  const int fw = cropped_size(w, opt.preprocess.crop_fraction);
+  const int fh = cropped_size(h, opt.preprocess.crop_fraction);
+  const auto n = static_cast<std::size_t>(fw) * static_cast<std::size_t>(fh);
   std::vector<float> normalised(n);
+  PreprocessScratch scratch;
   std::vector<std::size_t> kept;  // index into chips of each column
   std::vector<Eigen::VectorXf> columns;
   for (std::size_t i = 0; i < chips.size(); ++i) {
@@ -104,7 +107,8 @@ Prepared prepare(std::span<const LabelledChip> chips, const TrainOptions& opt,
     }
     if (lc.label.empty()) throw std::runtime_error("training chip " + name + " has no class label");
     ChipCheck c = check_chip_size(lc.chip.view(), w, h);
-    if (c.ok()) c = normalise_chip(lc.chip.view(), normalised);
+    if (c.ok())
+      c = normalise_chip(preprocess_into(lc.chip.view(), opt.preprocess, scratch), normalised);
     if (!c.ok()) {
       std::string reason = c.reason();
       if (c.status == ChipStatus::kWrongSize && c.width > 0 && c.height > 0) {
@@ -191,6 +195,11 @@ void validate_model(const Model& m) {
                              std::to_string(m.chip_height) + " is not positive");
   }
   if (m.p < 1) throw std::runtime_error("model p = " + std::to_string(m.p) + " (must be >= 1)");
+  try {
+    validate_preprocess(m.preprocess);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(std::string("model ") + e.what());
+  }
   if (m.aspect_sectors < 1) {
     throw std::runtime_error("model aspect_sectors = " + std::to_string(m.aspect_sectors) +
                              " (must be >= 1)");
@@ -287,6 +296,11 @@ float subspace_residual(const Subspace& s, const Eigen::Ref<const Eigen::VectorX
 Model train_model(std::span<const LabelledChip> chips, const TrainOptions& opt,
                   TrainReport* report) {
   if (opt.p < 1) throw std::runtime_error("p = " + std::to_string(opt.p) + " (must be >= 1)");
+  try {
+    validate_preprocess(opt.preprocess);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
   if (opt.aspect_sectors < 1 || opt.aspect_sectors > 360) {
     throw std::runtime_error("aspect sectors = " + std::to_string(opt.aspect_sectors) +
                              " (allowed 1 to 360)");
@@ -297,6 +311,7 @@ Model train_model(std::span<const LabelledChip> chips, const TrainOptions& opt,
   m.chip_height = chips[0].chip.height;
   m.p = opt.p;
   m.aspect_sectors = opt.aspect_sectors;
+  m.preprocess = opt.preprocess;
 
   // mine-like flags
   std::vector<bool> mine(pr.names.size(), false);
@@ -343,7 +358,8 @@ Model train_model(std::span<const LabelledChip> chips, const TrainOptions& opt,
 
 Classifier::Classifier(Model model) : model_(std::move(model)) {
   validate_model(model_);
-  const auto n = static_cast<Eigen::Index>(model_.pixel_count());
+  scratch_.reserve(model_.chip_width, model_.chip_height);
+  const auto n = static_cast<Eigen::Index>(model_.feature_count());
   int max_rank = 0;
   for (const auto* list : {&model_.classes, &model_.groups}) {
     for (const auto& c : *list) {
@@ -378,7 +394,10 @@ ChipCheck Classifier::classify(ChipView chip) {
   r.runner_up = -1;
   ChipCheck check = check_chip_size(chip, model_.chip_width, model_.chip_height);
   if (!check.ok()) return check;
-  const ChipCheck norm = normalise_chip(chip, std::span<float>(x_.data(), model_.pixel_count()));
+  const ChipView features =
+      model_.preprocess.is_identity() ? chip : preprocess_into(chip, model_.preprocess, scratch_);
+  const ChipCheck norm =
+      normalise_chip(features, std::span<float>(x_.data(), model_.feature_count()));
   if (!norm.ok()) {
     check = norm;
     check.expected_width = model_.chip_width;

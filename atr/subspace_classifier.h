@@ -8,6 +8,9 @@
 // standard per-class eigen-subspace method that Section 3.2 describes):
 //
 //   Chips as vectors. A chip of n x m pixels is a vector x in R^(n*m) (row-major).
+//   Pre-processing (ours, off by default; atr/chip_preprocess.h). A model may crop chips to
+//     their centre, average speckle or keep only levels against the seabed before eq. 9; it is
+//     stored in the model and applied alike in training and classification.
 //   Eq. 9 (normalisation). Every chip, training or test, is centred on its own mean and divided
 //     by its own standard deviation, taken over its pixels: x~ = (x - mean(x)) / std(x)
 //     (atr/chip.h). This removes gain and offset.
@@ -57,6 +60,7 @@
 #include <vector>
 
 #include "atr/chip.h"
+#include "atr/chip_preprocess.h"
 
 namespace sonarloop::atr {
 
@@ -92,15 +96,24 @@ struct ClassModel {
 
 // A trained model: plain data, saved and loaded by atr/model_file.h.
 struct Model {
-  int chip_width = 0;           // pixels
+  int chip_width = 0;           // pixels of the chips the model takes
   int chip_height = 0;          // pixels
   int p = kDefaultSubspaceDim;  // requested subspace dimension (a subspace may hold fewer)
   int aspect_sectors = 1;
+  // applied to every chip before eq. 9, in training and classification (atr/chip_preprocess.h);
+  // the subspaces live in the pre-processed (feature) size
+  ChipPreprocess preprocess;
   std::vector<ClassModel> classes;  // identification classes, in training order (sorted names)
   std::vector<ClassModel> groups;   // empty, or {"mine", "non_mine"} (Section 4.1.2)
 
   std::size_t pixel_count() const {
     return static_cast<std::size_t>(chip_width) * static_cast<std::size_t>(chip_height);
+  }
+  // The size of a chip after pre-processing (the crop), which the subspaces work in.
+  int feature_width() const { return cropped_size(chip_width, preprocess.crop_fraction); }
+  int feature_height() const { return cropped_size(chip_height, preprocess.crop_fraction); }
+  std::size_t feature_count() const {
+    return static_cast<std::size_t>(feature_width()) * static_cast<std::size_t>(feature_height());
   }
   // Index of the class called `name`, or -1.
   int find_class(std::string_view name) const;
@@ -132,6 +145,7 @@ struct TrainOptions {
   int p = kDefaultSubspaceDim;   // leading eigenvectors per subspace, >= 1
   int aspect_sectors = 1;        // N >= 1; N > 1 needs every chip's aspect_deg
   bool group_subspaces = false;  // also train pooled "mine" / "non_mine" subspaces
+  ChipPreprocess preprocess;     // stored in the model, applied before eq. 9
   // Class names that are mine-like; when unset, default_mine_like() decides. Every name listed
   // must be a class of the training set.
   std::optional<std::vector<std::string>> mine_classes;
@@ -185,13 +199,15 @@ class Classifier {
   ChipCheck classify(ChipView chip);
   const Classification& result() const { return result_; }
 
-  // The normalised chip of the last classify() call (n), for inspection.
+  // The normalised (pre-processed) chip of the last classify() call (feature_count), for
+  // inspection.
   const Eigen::VectorXf& normalised() const { return x_; }
 
  private:
   float class_distance(const ClassModel& c, int* best_subspace);
 
   Model model_;
+  PreprocessScratch scratch_;
   Eigen::VectorXf x_;       // normalised chip (n)
   Eigen::VectorXf work_n_;  // residual (n)
   Eigen::VectorXf work_p_;  // projection coefficients (max rank)

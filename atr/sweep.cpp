@@ -45,6 +45,7 @@ SweepCondition base_condition(const SweepSettings& s, double resolution_cm) {
   c.resolution_m = resolution_cm / 100.0;
   c.train_count = s.train_count;
   c.p = s.p;
+  c.preprocess = s.preprocess;
   return c;
 }
 
@@ -89,6 +90,41 @@ std::string format_pct(double v) {
   return buf;
 }
 
+// The pre-processing variants of the ablation: each factor alone, then the combinations.
+std::vector<ChipPreprocess> ablation_variants() {
+  std::vector<ChipPreprocess> v(1);  // eq. 9 only (the paper)
+  const auto add = [&](double crop, int looks, ChipLevels levels) {
+    v.push_back(ChipPreprocess{crop, looks, levels, 6.0});
+  };
+  add(1.0, 3, ChipLevels::kDb);
+  add(1.0, 5, ChipLevels::kDb);
+  add(1.0, 1, ChipLevels::kAboveSeabed);
+  add(1.0, 3, ChipLevels::kThreeLevel);
+  add(2.0 / 3.0, 1, ChipLevels::kDb);
+  add(0.5, 1, ChipLevels::kDb);
+  add(0.4, 1, ChipLevels::kDb);
+  add(0.3, 1, ChipLevels::kDb);
+  add(0.5, 1, ChipLevels::kAboveSeabed);
+  add(0.4, 1, ChipLevels::kAboveSeabed);
+  return v;
+}
+
+// At 5 and 15 cm (or --resolutions-cm): one series per variant, x = the resolution.
+std::vector<SweepCondition> ablation_conditions(const SweepSettings& s) {
+  std::vector<SweepCondition> out;
+  const std::vector<double> res =
+      s.resolutions_cm.empty() ? std::vector<double>{5.0, 15.0} : s.resolutions_cm;
+  for (double cm : res) {
+    for (const ChipPreprocess& p : ablation_variants()) {
+      SweepCondition c = base_condition(s, cm);
+      c.series = preprocess_label(p);
+      c.preprocess = p;
+      out.push_back(c);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 ErrorRate error_rate(std::size_t errors, std::size_t n, double z) {
@@ -112,7 +148,7 @@ LabelledChip labelled_chip(const render::ChipImage& c) {
 }
 
 std::vector<std::string> sweep_experiment_names() {
-  return {"fig11", "fig13", "fig15", "aspect", "snr", "altitude", "train_size", "p"};
+  return {"fig11", "fig13", "fig15", "aspect", "snr", "altitude", "train_size", "p", "ablation"};
 }
 
 SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettings& s) {
@@ -120,6 +156,8 @@ SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettin
   e.name = name;
   e.classes = four_targets();
   e.test_count = s.test_count;
+  for (const auto& b : s.seabeds)
+    e.seabed_names.push_back(b.name);
   if (name == "fig11") {
     e.title = "Fig. 11: identification from highlights against pixel resolution";
     e.conditions = resolution_curve(s, highlight_resolutions_cm());
@@ -178,6 +216,9 @@ SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettin
           c.p = static_cast<int>(v);
           return c.p < s.train_count;  // rank <= k - 1
         });
+  } else if (name == "ablation") {
+    e.title = "Ablation: chip pre-processing before eq. 9 (highlights)";
+    e.conditions = ablation_conditions(s);
   } else {
     std::string all;
     for (const auto& n : sweep_experiment_names())
@@ -259,10 +300,12 @@ ConditionResult::ConditionResult(std::size_t index, const SweepExperiment& e, co
   const auto cells = e.classes.size() * static_cast<std::size_t>(std::max(e.aspect_bins, 0));
   aspect_n.assign(cells, 0);
   aspect_errors.assign(cells, 0);
+  seabed_n.assign(e.seabed_names.size(), 0);
+  seabed_errors.assign(e.seabed_names.size(), 0);
 }
 
 void score_chip(ConditionResult& out, const SweepExperiment& e, const Model& m, std::size_t truth,
-                double aspect_deg, const Classification& r) {
+                double aspect_deg, int seabed, const Classification& r) {
   const auto predicted = static_cast<std::size_t>(r.class_index);
   out.confusion.add(truth, predicted);
   const TargetType t = e.classes.at(truth);
@@ -276,6 +319,10 @@ void score_chip(ConditionResult& out, const SweepExperiment& e, const Model& m, 
                       static_cast<std::size_t>(aspect_sector(aspect_deg, e.aspect_bins));
     ++out.aspect_n[cell];
     out.aspect_errors[cell] += wrong;
+  }
+  if (seabed >= 0 && static_cast<std::size_t>(seabed) < out.seabed_n.size()) {
+    ++out.seabed_n[static_cast<std::size_t>(seabed)];
+    out.seabed_errors[static_cast<std::size_t>(seabed)] += wrong;
   }
 }
 
@@ -322,6 +369,12 @@ std::string results_csv(const SweepExperiment& e, const std::vector<ConditionRes
     if (e.mine_groups) {
       out +=
           csv_row(e, c, r, c.x_name, c.x, "mine_vs_non_mine", error_rate(r.mine_errors, r.mine_n));
+    }
+    if (r.seabed_n.size() > 1) {
+      for (std::size_t b = 0; b < r.seabed_n.size(); ++b) {
+        out += csv_row(e, c, r, c.x_name, c.x, "seabed_" + e.seabed_names[b],
+                       error_rate(r.seabed_errors[b], r.seabed_n[b]));
+      }
     }
     if (e.aspect_bins > 0) {
       const auto bins = static_cast<std::size_t>(e.aspect_bins);

@@ -27,12 +27,16 @@
 //   altitude    stability: fixed sonar altitudes 2-20 m (grazing angle), at 5 cm.
 //   train_size  stability: training chips per class 5-320, at 5 cm.
 //   p           stability and speed: subspace dimension p 1-80, at 5 cm.
+//   ablation    the chip pre-processing factors of atr/chip_preprocess.h (crop, multilook,
+//               levels against the seabed), one at a time and combined, at 5 and 15 cm, on
+//               the four targets' highlights; every experiment also scores each test seabed.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "atr/chip.h"
+#include "atr/chip_preprocess.h"
 #include "atr/confusion.h"
 #include "atr/subspace_classifier.h"
 #include "sim/render/chip_renderer.h"
@@ -70,6 +74,8 @@ struct SweepSettings {
   std::vector<render::DatasetSeabed> seabeds;  // must not be empty
   render::SonarDesc sonar;
   render::RendererKind renderer = render::RendererKind::kProfile;
+  // every condition's chip pre-processing (the ablation sets its own); default none, as the paper
+  ChipPreprocess preprocess;
 };
 
 // One point of an experiment.
@@ -86,6 +92,7 @@ struct SweepCondition {
   int train_count = 80;  // per class
   int p = kDefaultSubspaceDim;
   int aspect_sectors = 1;
+  ChipPreprocess preprocess;  // the model's pre-processing (TrainOptions::preprocess)
 };
 
 struct SweepExperiment {
@@ -93,9 +100,10 @@ struct SweepExperiment {
   std::string title;
   render::ChipKind kind = render::ChipKind::kHighlight;
   std::vector<targets::TargetType> classes;
-  bool mine_groups = false;  // also score the mine / non-mine decision
-  int aspect_bins = 0;       // > 0: also score per aspect bin
-  int test_count = 100;      // per class
+  bool mine_groups = false;               // also score the mine / non-mine decision
+  int aspect_bins = 0;                    // > 0: also score per aspect bin
+  int test_count = 100;                   // per class
+  std::vector<std::string> seabed_names;  // the dataset's seabeds (ChipParams::seabed)
   std::vector<SweepCondition> conditions;
 };
 
@@ -129,6 +137,7 @@ struct ConditionResult {
   ConfusionMatrix confusion;
   std::size_t mine_n = 0, mine_errors = 0;
   std::vector<std::size_t> aspect_n, aspect_errors;  // (classes x aspect bins), row-major
+  std::vector<std::size_t> seabed_n, seabed_errors;  // (seabeds) identification per test seabed
   std::size_t rejected = 0;                          // degenerate test chips
   // timings, filled by the caller: thread-seconds to render one chip, seconds to train the
   // model, seconds to classify one chip (one thread)
@@ -140,16 +149,18 @@ struct ConditionResult {
   ConditionResult(std::size_t index, const SweepExperiment& e, const Model& m);
 };
 
-// Scores one test chip: `truth` indexes e.classes; r is the classifier's answer.
+// Scores one test chip: `truth` indexes e.classes, `seabed` e.seabed_names; r is the
+// classifier's answer.
 void score_chip(ConditionResult& out, const SweepExperiment& e, const Model& m, std::size_t truth,
-                double aspect_deg, const Classification& r);
+                double aspect_deg, int seabed, const Classification& r);
 
 // CSV files (header line included). Rates in percent.
 //   results: experiment,series,x_name,x,resolution_cm,class,n,errors,error_pct,ci_low_pct,
 //            ci_high_pct,train_per_class,p,aspect_sectors,render_ms_per_chip,train_s,
 //            classify_ms_per_chip,complete
-//   with class = a target key, "all" (identification over all classes) or "mine_vs_non_mine";
-//   the aspect experiment adds rows with x_name = "aspect_deg" (bin centre) per series.
+//   with class = a target key, "all" (identification over all classes), "mine_vs_non_mine",
+//   or "seabed_NAME" (identification over the test chips on that seabed, when there are
+//   several); the aspect experiment adds rows with x_name = "aspect_deg" (bin centre) per series.
 std::string results_csv(const SweepExperiment& e, const std::vector<ConditionResult>& results);
 //   confusion: experiment,series,x_name,x,truth,predicted,count
 std::string confusion_csv(const SweepExperiment& e, const std::vector<ConditionResult>& results);

@@ -54,4 +54,28 @@ render::RendererKind renderer_option(const Args& args) {
   return *kind;
 }
 
+atr::ChipPreprocess preprocess_options(const Args& args) {
+  atr::ChipPreprocess p;
+  p.crop_fraction = args.get_double("--crop", 0.05, 1.0).value_or(1.0);
+  p.multilook_px = static_cast<int>(args.get_int("--multilook", 1, 63).value_or(1));
+  if (p.multilook_px % 2 == 0)
+    throw UsageError("--multilook: the window must be odd (1, 3, 5 ...)");
+  if (const auto l = args.get("--levels")) {
+    bool found = false;
+    for (auto mode : {atr::ChipLevels::kDb, atr::ChipLevels::kAboveSeabed,
+                      atr::ChipLevels::kBelowSeabed, atr::ChipLevels::kThreeLevel}) {
+      if (*l == atr::chip_levels_name(mode)) {
+        p.levels = mode;
+        found = true;
+      }
+    }
+    if (!found) {
+      throw UsageError("--levels: '" + *l +
+                       "' is not one of db, above_seabed, below_seabed, three_level");
+    }
+  }
+  p.threshold_db = args.get_double("--threshold-db", 0.1, 59.0).value_or(6.0);
+  return p;
+}
+
 }  // namespace sonarloop::tools

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "atr/chip_preprocess.h"
 #include "sim/render/ping_renderer.h"
 #include "tools/args.h"
 
@@ -21,5 +22,10 @@ int stop_signal();
 
 // --renderer profile|raytrace (default profile); a UsageError names the choices.
 render::RendererKind renderer_option(const Args& args);
+
+// The chip pre-processing options of train and sweep (atr/chip_preprocess.h): --crop F,
+// --multilook K, --levels db|above_seabed|below_seabed|three_level, --threshold-db T. The
+// command must declare them. Throws UsageError for a value out of range.
+atr::ChipPreprocess preprocess_options(const Args& args);
 
 }  // namespace sonarloop::tools

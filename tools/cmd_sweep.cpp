@@ -174,6 +174,7 @@ bool run_experiment(const atr::SweepExperiment& e, RunContext& ctx,
         opt.aspect_sectors = c.aspect_sectors;
         opt.skip_degenerate = true;
         const auto t0 = Clock::now();
+        opt.preprocess = c.preprocess;
         atr::Model model =
             atr::train_model(atr::training_prefix(train, c.train_count, classes), opt);
         Trial t;
@@ -204,7 +205,7 @@ bool run_experiment(const atr::SweepExperiment& e, RunContext& ctx,
               }
               ++t.classified;
               atr::score_chip(*t.result, e, t.classifier->model(), truth, c.params.aspect_deg,
-                              t.classifier->result());
+                              c.params.seabed, t.classifier->result());
             }
             ctx.bar->update(++ctx.chips_done);
           },
@@ -275,7 +276,11 @@ int run_sweep(const std::vector<std::string>& argv) {
                          {"--non-mine"},
                          {"--sonar"},
                          {"--no-plot", false},
-                         {"--renderer"}});
+                         {"--renderer"},
+                         {"--crop"},
+                         {"--multilook"},
+                         {"--levels"},
+                         {"--threshold-db"}});
   if (!args.positionals().empty()) {
     throw UsageError("unexpected argument '" + args.positionals()[0] + "'");
   }
@@ -290,6 +295,7 @@ int run_sweep(const std::vector<std::string>& argv) {
   if (const auto n = args.get("--non-mine")) s.non_mine = parse_non_mine(*n);
   s.seabeds = parse_seabeds(args.get_or("--seabed", kDefaultSeabeds));
   s.renderer = renderer_option(args);
+  s.preprocess = preprocess_options(args);
   const std::string sonar_arg = args.get_or("--sonar", std::string(config::kDefaultSonarPreset));
   const std::string ext = fs::path(sonar_arg).extension().string();
   s.sonar = ext == ".yaml" || ext == ".yml" ? config::load_sonar(sonar_arg)
@@ -374,6 +380,9 @@ experiments (--experiment, repeatable, or 'all'; default fig11):
   altitude    fixed sonar altitudes 2-20 m (grazing angle), 5 cm
   train_size  5-320 training chips per target, 5 cm
   p           subspace dimension 1-79 (below --train-count), 5 cm
+  ablation    chip pre-processing before eq. 9 (crop to the chip centre, multilook
+              speckle averaging, levels against the seabed), each alone and combined, at
+              5 and 15 cm (or --resolutions-cm), the four targets' highlights
 The stability studies (aspect, snr, altitude, train_size, p) run at 5 cm, or at each of
 --resolutions-cm (one curve each); fig11/13/15 take --resolutions-cm as their x axis.
 
@@ -381,8 +390,8 @@ Writes to --out DIR (rewritten after every resolution, so an interrupted run kee
   NAME.csv            experiment,series,x_name,x,resolution_cm,class,n,errors,error_pct,
                       ci_low_pct,ci_high_pct,train_per_class,p,aspect_sectors,
                       render_ms_per_chip,train_s,classify_ms_per_chip,complete
-                      (class: a target, 'all', or 'mine_vs_non_mine'; render time is
-                      thread-seconds per chip)
+                      (class: a target, 'all', 'mine_vs_non_mine', or 'seabed_NAME' for
+                      the test chips on one seabed; render time is thread-seconds per chip)
   NAME_confusion.csv  experiment,series,x_name,x,truth,predicted,count
   *.png               charts by tools/plot_sweep.py (run when matplotlib is available,
                       otherwise the command is printed)
@@ -404,6 +413,9 @@ options:
   --sonar NAME|FILE    sonar preset or YAML (default pailhas_strip; bin and pulse set per R)
   --no-plot            do not run the chart script
   --renderer R         profile (default: heightfield profile renderer) or raytrace (Embree)
+  --crop F, --multilook K, --levels L, --threshold-db T
+                       chip pre-processing before eq. 9 for every experiment but ablation,
+                       as `sonarloop train` (default none, as the paper)
 
 Ctrl-C stops after the chip in progress; the CSV files keep every condition scored so far.
 Same --seed and counts give the same counts and rates on any --threads (times differ).
@@ -412,6 +424,8 @@ examples:
   sonarloop sweep --experiment fig11 --out out/sweep
   sonarloop sweep --experiment fig11 --resolutions-cm 5,20 --train-count 40 --test-count 50
   sonarloop sweep --experiment all --test-count 1000 --out /tmp/sweep_big
+  sonarloop sweep --experiment ablation --test-count 1000 --out /tmp/ablation
+  sonarloop sweep --experiment fig13 --crop 0.4 --out /tmp/fig13_crop
 )",
     run_sweep, 65};
 SONARLOOP_REGISTER_COMMAND(kSweepCommand);

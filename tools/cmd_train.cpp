@@ -21,7 +21,11 @@ int run_train(const std::vector<std::string>& argv) {
                          {"--aspect-sectors"},
                          {"--group-subspaces", false},
                          {"--mine-classes"},
-                         {"--skip-bad-chips", false}});
+                         {"--skip-bad-chips", false},
+                         {"--crop"},
+                         {"--multilook"},
+                         {"--levels"},
+                         {"--threshold-db"}});
   if (args.positionals().size() != 1) throw UsageError("expected one CHIPS_DIR");
   const auto out = args.get("--out");
   if (!out) throw UsageError("--out MODEL is required");
@@ -31,6 +35,7 @@ int run_train(const std::vector<std::string>& argv) {
   opt.group_subspaces = args.has("--group-subspaces");
   opt.skip_degenerate = args.has("--skip-bad-chips");
   if (const auto m = args.get("--mine-classes")) opt.mine_classes = split_comma_list(*m);
+  opt.preprocess = preprocess_options(args);
 
   const auto t0 = std::chrono::steady_clock::now();
   const atr::ChipFolder folder = atr::read_chip_folder(args.positionals()[0]);
@@ -56,9 +61,11 @@ int run_train(const std::vector<std::string>& argv) {
   std::printf("trained on %zu chips of %d x %d pixels from '%s' (read %.2f s, train %.2f s)\n",
               folder.chips.size() - report.skipped.size(), model.chip_width, model.chip_height,
               folder.root.c_str(), read_s, train_s);
-  std::printf("p = %d, %d aspect sector%s%s\n", model.p, model.aspect_sectors,
-              model.aspect_sectors == 1 ? "" : "s",
-              model.groups.empty() ? "" : ", with mine / non_mine group subspaces");
+  std::printf("p = %d, %d aspect sector%s%s; pre-processing: %s (features %d x %d)\n", model.p,
+              model.aspect_sectors, model.aspect_sectors == 1 ? "" : "s",
+              model.groups.empty() ? "" : ", with mine / non_mine group subspaces",
+              atr::preprocess_label(model.preprocess).c_str(), model.feature_width(),
+              model.feature_height());
   auto print_class = [](const atr::ClassModel& c, const char* kind) {
     int chips = 0;
     std::string ranks;
@@ -115,9 +122,20 @@ options:
   --skip-bad-chips     skip degenerate chips (constant, non-finite), listing them, instead of
                        stopping with an error
 
+chip pre-processing before eq. 9 (stored in the model; classify and onboard apply it too;
+default none, as the paper; measured by `sonarloop sweep --experiment ablation`):
+  --crop F             keep the central fraction F of the rows and columns (e.g. 0.4 keeps
+                       1.2 m of a 3 m chip: less seabed texture around the target)
+  --multilook K        average the intensity over K x K pixels (odd K; speckle reduction)
+  --levels L           db (default), above_seabed (only what is brighter than the chip's
+                       median level), below_seabed (only what is darker), three_level
+                       (+1 / 0 / -1 against the median +- --threshold-db)
+  --threshold-db T     three_level threshold in dB (default 6)
+
 examples:
   sonarloop train out/chips --out out/atr.slpca
   sonarloop train out/chips --out out/atr8.slpca --aspect-sectors 8 --p 10
+  sonarloop train out/chips --out out/atr_crop.slpca --crop 0.4
   sonarloop train ~/survey/chips --out survey.slpca --mine-classes mine,torpedo
 )",
     run_train, 60};

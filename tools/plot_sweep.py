@@ -79,7 +79,8 @@ def plot_error_curves(name, rows, out_dir):
             if cls == "mine_vs_non_mine":
                 continue
             x, y, lo, hi = curve(srows, cls, x_name)
-            style = dict(lw=2.5, color="black") if cls == "all" else dict(lw=1.2)
+            style = (dict(lw=2.5, color="black") if cls == "all" else
+                     dict(lw=1.0, ls="--") if cls.startswith("seabed_") else dict(lw=1.2))
             ax.errorbar(x, y, yerr=[lo, hi], marker="o", ms=3, capsize=2, label=cls, **style)
         ax.set_title(f"{name} {series}".strip() + ": misidentification")
         ax.set_xlabel(X_LABEL.get(x_name, x_name))
@@ -170,6 +171,42 @@ def plot_confusion(name, path, out_dir):
     plt.close(fig)
 
 
+def plot_ablation(rows, out_dir):
+    """One panel per resolution: error of each pre-processing variant, overall and per seabed."""
+    rows = [r for r in rows if r["x_name"] == "resolution_cm"]
+    xs = sorted({float(r["x"]) for r in rows})
+    variants = list(series_of(rows).keys())
+    kinds = ["all"] + [c for c in classes_of(rows) if c.startswith("seabed_")]
+    fig, axes = plt.subplots(1, len(xs), figsize=(6.5 * len(xs), 0.45 * len(variants) + 1.8),
+                             squeeze=False, sharey=True)
+    height = 0.8 / len(kinds)
+    for ax, x in zip(axes[0], xs):
+        for k, kind in enumerate(kinds):
+            ys, vals, errs = [], [], [[], []]
+            for i, v in enumerate(variants):
+                sel = [r for r in rows if r["series"] == v and r["class"] == kind
+                       and float(r["x"]) == x]
+                if not sel:
+                    continue
+                e = float(sel[0]["error_pct"])
+                ys.append(i + (k - (len(kinds) - 1) / 2) * height)
+                vals.append(e)
+                errs[0].append(e - float(sel[0]["ci_low_pct"]))
+                errs[1].append(float(sel[0]["ci_high_pct"]) - e)
+            style = dict(color="black") if kind == "all" else {}
+            ax.barh(ys, vals, height=height, xerr=errs, capsize=2, label=kind, **style)
+        ax.set_yticks(range(len(variants)))
+        ax.set_yticklabels(variants, fontsize=7)
+        ax.invert_yaxis()
+        ax.set_xlabel("misidentification (%)")
+        ax.set_title(f"ablation at {x:g} cm", fontsize=9)
+        ax.grid(alpha=0.3, axis="x")
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out_dir, "ablation.png"), dpi=DPI)
+    plt.close(fig)
+
+
 def plot_speed_accuracy(tables, out_dir):
     """Render and classification time per chip against accuracy (fig11 across R, p across p)."""
     pts = []  # (label, render_ms, classify_ms, accuracy_pct, kind)
@@ -222,6 +259,8 @@ def main(argv):
     for name, rows in tables.items():
         if name == "aspect":
             plot_aspect(rows, out_dir)
+        elif name == "ablation":
+            plot_ablation(rows, out_dir)
         else:
             plot_error_curves(name, rows, out_dir)
         conf = os.path.join(out_dir, f"{name}_confusion.csv")

@@ -127,3 +127,37 @@ TEST_CASE("classify allocations: classify() allocates nothing once set up") {
   CHECK(n == 0);
   CHECK(correct == 12);
 }
+
+TEST_CASE("classify allocations: a pre-processing model allocates nothing either") {
+  // crop, multilook and three levels: the classifier's scratch is sized at construction
+  const auto lc = testing::make_linear_classes(3, 40, 40, 3, 6);
+  const std::vector<std::string> names = {"cylinder", "manta", "rock"};
+  Rng rng(10, RngStream::kTraining, 6);
+  std::vector<LabelledChip> train;
+  for (int c = 0; c < 3; ++c) {
+    for (int i = 0; i < 30; ++i) {
+      LabelledChip l;
+      l.chip = testing::sample_linear(lc, c, rng, 0.1, 3.0, 100.0);
+      l.label = names[static_cast<std::size_t>(c)];
+      train.push_back(std::move(l));
+    }
+  }
+  TrainOptions opt;
+  opt.p = 10;
+  opt.preprocess = ChipPreprocess{0.5, 3, ChipLevels::kAboveSeabed, 6.0};
+  Classifier clf(train_model(train, opt));
+  REQUIRE(clf.model().feature_count() == 400);
+  std::vector<Chip> probes;
+  for (int c = 0; c < 3; ++c)
+    probes.push_back(testing::sample_linear(lc, c, rng, 0.1, 3.0, 100.0));
+  int ok = 0;
+  const long n = allocations_in([&] {
+    for (int rep = 0; rep < 3; ++rep) {
+      for (const Chip& p : probes)
+        ok += clf.classify(p.view()).ok();
+    }
+  });
+  CHECK(n == 0);
+  CHECK(ok == 9);
+  CHECK(clf.normalised().size() == 400);
+}

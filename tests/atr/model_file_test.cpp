@@ -127,13 +127,19 @@ TEST_CASE("model file: the byte layout is the documented one") {
   CHECK(le32(b, 24) == 3);  // classes
   CHECK(le32(b, 28) == 0);  // groups
   CHECK(le32(b, 32) == 0);  // reserved
+  // pre-processing record: none (crop 1, multilook 1, levels db, threshold 6 dB)
+  CHECK(le32(b, 36) == 0);
+  CHECK(le32(b, 40) == 0x3FF00000u);  // 1.0 as f64, high word
+  CHECK(le32(b, 44) == 1);
+  CHECK(b[48] == 0);
+  CHECK(le32(b, 56) == 0x40180000u);  // 6.0 as f64, high word
   // first class record: "cuboid" (classes are sorted by name)
-  CHECK((b[36] | b[37] << 8) == 6);
-  CHECK(std::string(b.begin() + 38, b.begin() + 44) == "cuboid");
-  CHECK(b[44] == 1);        // cuboid is mine-like
-  CHECK(le32(b, 46) == 1);  // one subspace
-  // size: header + per class (name record + subspaces) + crc
-  std::size_t expect = 36 + 4;
+  CHECK((b[60] | b[61] << 8) == 6);
+  CHECK(std::string(b.begin() + 62, b.begin() + 68) == "cuboid");
+  CHECK(b[68] == 1);        // cuboid is mine-like
+  CHECK(le32(b, 70) == 1);  // one subspace
+  // size: header + pre-processing + per class (name record + subspaces) + crc
+  std::size_t expect = 36 + 24 + 4;
   for (const auto& c : m.classes) {
     expect += 2 + c.name.size() + 2 + 4;
     for (const auto& s : c.subspaces) {
@@ -160,9 +166,14 @@ TEST_CASE("model file: bad magic, version, truncation, trailing bytes and corrup
                     Catch::Contains("bad magic"));
 
   b = good;
-  b[6] = 2;
-  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("unsupported format version 2") &&
-                                              Catch::Contains("reads version 1"));
+  b[6] = 3;
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("unsupported format version 3") &&
+                                              Catch::Contains("reads versions 1 and 2"));
+  // a bad pre-processing record: an even multilook window
+  b = good;
+  put_le32(b, 44, 4);
+  fix_crc(b);
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("multilook window 4"));
 
   // every truncation is an error, none crashes
   for (std::size_t len = 0; len < good.size(); ++len) {
@@ -208,7 +219,7 @@ TEST_CASE("model file: inconsistent contents are rejected even with a valid chec
   CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("exceeds p = 2"));
   // a NaN in the first mean image (the first class: name "cuboid", 1 subspace, rank 5)
   b = good;
-  const std::size_t mean_at = 36 + 2 + 6 + 2 + 4 + 16 + 8 + 8 * 5;
+  const std::size_t mean_at = 36 + 24 + 2 + 6 + 2 + 4 + 16 + 8 + 8 * 5;
   put_le32(b, mean_at, 0x7FC00000u);
   fix_crc(b);
   CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("non-finite"));
@@ -238,4 +249,31 @@ TEST_CASE("model file: file errors name the path") {
                     Catch::Contains("text.slpca") && Catch::Contains("bad magic"));
   CHECK_THROWS_WITH(save_model(trained(false), dir.file("no/such/dir/m.slpca")),
                     Catch::Contains("cannot create"));
+}
+
+TEST_CASE("model file: a pre-processing model round-trips; version 1 reads as none") {
+  TrainOptions opt;
+  opt.p = 4;
+  opt.preprocess = ChipPreprocess{0.5, 3, ChipLevels::kAboveSeabed, 4.5};
+  const Model m = train_model(chips(12, 5, false), opt);
+  REQUIRE(m.feature_width() == 4);
+  REQUIRE(m.feature_height() == 3);
+  const Model back = decode_model(encode_model(m), "pre");
+  CHECK(back.preprocess.crop_fraction == 0.5);
+  CHECK(back.preprocess.multilook_px == 3);
+  CHECK(back.preprocess.levels == ChipLevels::kAboveSeabed);
+  CHECK(back.preprocess.threshold_db == 4.5);
+  CHECK(back.classes[0].subspaces[0].mean.size() == 12);
+  CHECK(encode_model(back) == encode_model(m));
+
+  // a version 1 file: the version 2 bytes without the pre-processing record
+  const Model plain = trained(false);
+  const auto v2 = encode_model(plain);
+  std::vector<std::uint8_t> v1(v2.begin(), v2.begin() + 36);
+  v1.insert(v1.end(), v2.begin() + 60, v2.end());
+  v1[6] = 1;
+  fix_crc(v1);
+  const Model old = decode_model(v1, "v1");
+  CHECK(old.preprocess.is_identity());
+  expect_same(plain, old);
 }

@@ -2,6 +2,7 @@
 // definitions, render groups, training prefixes, scoring and the CSV rows.
 #include "atr/sweep.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <sstream>
 #include <stdexcept>
@@ -147,11 +148,11 @@ TEST_CASE("score_chip and results_csv: per class, all, mine / non-mine, aspect",
   // manta (truth 0) right twice; rockan (truth 1) called box (non-mine) once at aspect 100
   c.class_index = 0;
   c.mine_like = true;
-  score_chip(r, e, m, 0, 10.0, c);
-  score_chip(r, e, m, 0, 200.0, c);
+  score_chip(r, e, m, 0, 10.0, 0, c);
+  score_chip(r, e, m, 0, 200.0, 0, c);
   c.class_index = 6;
   c.mine_like = false;
-  score_chip(r, e, m, 1, 100.0, c);
+  score_chip(r, e, m, 1, 100.0, 0, c);
   r.complete = true;
   CHECK(r.confusion.total() == 3);
   CHECK(r.mine_errors == 1);
@@ -169,6 +170,53 @@ TEST_CASE("score_chip and results_csv: per class, all, mine / non-mine, aspect",
   const auto conf = lines(confusion_csv(e, {r}));
   CHECK(conf.size() == 1 + 49);
   CHECK(conf[1] == "fig13,,resolution_cm,5,manta,manta,2");
+}
+
+TEST_CASE("score_chip: identification per test seabed when there are several", "[sweep]") {
+  SweepSettings s = settings();
+  s.seabeds.push_back(render::builtin_dataset_seabed("ripples"));
+  s.resolutions_cm = {5};
+  const SweepExperiment e = make_sweep_experiment("fig11", s);
+  REQUIRE(e.seabed_names == std::vector<std::string>{"flat", "ripples"});
+  std::vector<std::string> names;
+  for (TargetType t : e.classes)
+    names.emplace_back(targets::target_type_info(t).key);
+  const Model m = toy_model(names);
+  ConditionResult r(0, e, m);
+  Classification c;
+  c.class_index = 0;
+  score_chip(r, e, m, 0, 0.0, 0, c);  // manta on flat: right
+  score_chip(r, e, m, 1, 0.0, 1, c);  // rockan on ripples called manta: wrong
+  score_chip(r, e, m, 0, 0.0, 1, c);  // manta on ripples: right
+  CHECK(r.seabed_n == std::vector<std::size_t>{1, 2});
+  CHECK(r.seabed_errors == std::vector<std::size_t>{0, 1});
+  const auto rows = lines(results_csv(e, {r}));
+  REQUIRE(rows.size() == 1 + 4 + 1 + 2);
+  CHECK(rows[6].find(",seabed_flat,1,0,0.0000,") != std::string::npos);
+  CHECK(rows[7].find(",seabed_ripples,2,1,50.0000,") != std::string::npos);
+}
+
+TEST_CASE("ablation: every pre-processing variant at each resolution, labelled", "[sweep]") {
+  SweepSettings s = settings();
+  const SweepExperiment e = make_sweep_experiment("ablation", s);
+  REQUIRE(e.conditions.size() % 2 == 0);
+  const std::size_t variants = e.conditions.size() / 2;
+  REQUIRE(variants >= 5);
+  CHECK(e.conditions[0].x == 5.0);
+  CHECK(e.conditions[variants].x == 15.0);
+  CHECK(e.conditions[0].preprocess.is_identity());
+  CHECK(e.conditions[0].series == "eq. 9 only");
+  std::vector<std::string> labels;
+  for (std::size_t i = 0; i < variants; ++i) {
+    validate_preprocess(e.conditions[i].preprocess);
+    CHECK(e.conditions[i].series == e.conditions[i + variants].series);
+    CHECK(std::find(labels.begin(), labels.end(), e.conditions[i].series) == labels.end());
+    labels.push_back(e.conditions[i].series);
+  }
+  // one rendering per resolution: the variants share their chips
+  const auto g = render_groups(e);
+  REQUIRE(g.size() == 1);
+  CHECK(g[0].resolutions_m.size() == 2);
 }
 
 }  // namespace

@@ -111,15 +111,21 @@ TEST_CASE("sweep: highlights identify better at 5 cm than at 20 cm (Fig. 11 tren
   INFO(slurp(log));
   REQUIRE(rc == 0);
   const auto rows = read_csv(out / "fig11.csv");
-  REQUIRE(rows.size() == 2 * 5);  // 2 resolutions x (4 targets + all)
+  REQUIRE(rows.size() == 2 * 8);  // 2 resolutions x (4 targets + all + 3 test seabeds)
+  long seabed_n = 0;
   for (const Row& r : rows) {
     CHECK(r.at("complete") == "1");
     CHECK(num(r, "ci_low_pct") <= num(r, "error_pct"));
     CHECK(num(r, "error_pct") <= num(r, "ci_high_pct"));
     CHECK(num(r, "render_ms_per_chip") > 0.0);
     CHECK(r.at("train_per_class") == "40");
+    if (r.at("class").rfind("seabed_", 0) == 0) {
+      seabed_n += std::stol(r.at("n"));
+      continue;
+    }
     CHECK(r.at("n") == (r.at("class") == "all" ? "320" : "80"));
   }
+  CHECK(seabed_n == 2 * 320);  // every test chip on exactly one seabed
   const Row& fine = find_row(rows, "5", "all");
   const Row& coarse = find_row(rows, "20", "all");
   INFO("5 cm: " << fine.at("error_pct") << " % [" << fine.at("ci_low_pct") << ", "
@@ -162,7 +168,7 @@ TEST_CASE("sweep: the same seed gives the same counts on any number of threads",
   REQUIRE(run(common + "--threads 2 --out " + dir.file("b"), log) == 0);
   const auto a = read_csv(dir.path() / "a" / "fig13.csv");
   const auto b = read_csv(dir.path() / "b" / "fig13.csv");
-  REQUIRE(a.size() == 7 + 2);  // 7 targets, all, mine_vs_non_mine
+  REQUIRE(a.size() == 7 + 2 + 3);  // 7 targets, all, mine_vs_non_mine, 3 test seabeds
   CHECK(counts_only(a) == counts_only(b));
   CHECK(slurp(dir.path() / "a" / "fig13_confusion.csv") ==
         slurp(dir.path() / "b" / "fig13_confusion.csv"));

@@ -158,6 +158,19 @@ TEST_CASE("train/classify cli: train on PNG chips, classify a labelled test fold
   CHECK(m2.groups.size() == 2);
   REQUIRE(run(dir, "classify " + model + " " + test.string() + " --quiet") == 0);
   CHECK_THAT(slurp(dir.file("stdout.txt")), !Catch::Contains("001.png"));
+
+  // a pre-processing model: stored in the file, applied by classify to the full-size chips
+  REQUIRE(run(dir, "train " + train.string() + " --out " + dir.file("crop.slpca") +
+                       " --crop 0.5 --multilook 3 --levels above_seabed") == 0);
+  CHECK_THAT(slurp(dir.file("stdout.txt")),
+             Catch::Contains("crop 0.5 + multilook 3 + above_seabed (features 8 x 8)"));
+  const atr::Model m3 = atr::load_model(dir.file("crop.slpca"));
+  CHECK(m3.chip_width == 16);
+  CHECK(m3.feature_width() == 8);
+  CHECK(m3.preprocess.multilook_px == 3);
+  CHECK(m3.preprocess.levels == atr::ChipLevels::kAboveSeabed);
+  REQUIRE(run(dir, "classify " + dir.file("crop.slpca") + " " + test.string()) == 0);
+  CHECK_THAT(slurp(dir.file("stdout.txt")), Catch::Contains("classified 30 chips (1 rejected)"));
 }
 
 TEST_CASE("train/classify cli: usage and input errors") {
@@ -167,6 +180,11 @@ TEST_CASE("train/classify cli: usage and input errors") {
   CHECK(run(dir, "train " + train.string()) == 2);  // no --out
   CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("--out"));
   CHECK(run(dir, "train " + train.string() + " --out " + dir.file("m") + " --p 0") == 2);
+  CHECK(run(dir, "train " + train.string() + " --out " + dir.file("m") + " --multilook 4") == 2);
+  CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("odd"));
+  CHECK(run(dir, "train " + train.string() + " --out " + dir.file("m") + " --levels bright") == 2);
+  CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("above_seabed"));
+  CHECK(run(dir, "train " + train.string() + " --out " + dir.file("m") + " --crop 1.5") == 2);
   CHECK(run(dir, "train --out " + dir.file("m")) == 2);
   CHECK(run(dir, "classify " + dir.file("m")) == 2);
   CHECK(run(dir, "train " + dir.file("missing") + " --out " + dir.file("m")) == 1);

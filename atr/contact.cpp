@@ -78,6 +78,10 @@ std::string contact_json(const Contact& c) {
     w.key("aspect_sector_deg").begin_array();
     w.value(c.aspect_min_deg, kScoreDigits).value(c.aspect_max_deg, kScoreDigits);
     w.end_array();
+    if (c.open_set_score) {
+      w.field("unknown", c.unknown);
+      w.field("open_set_score", *c.open_set_score, kScoreDigits);
+    }
   }
   if (!c.status.empty()) w.field("status", c.status);
   w.key("detection").begin_object();

@@ -30,6 +30,9 @@
 //                    unrelated to a class lie about sqrt(pixels) = 60 away for 60 x 60 chips)
 //   mine_distance, non_mine_distance  the group scores (null for a group without classes)
 //   aspect_sector_deg  the aspect sector of the nearest subspace of the identified class
+//   unknown, open_set_score  only with a model trained with open-set rejection: the distance
+//                    over the identified class's reject distance, and whether it exceeds 1 (an
+//                    object unlike every trained type; "class" then names the nearest one)
 //   detection        the detector's measurements (atr/detector.h)
 //   alignment        the chip window's shift from the detector's centre, in pixels, and the
 //                    windows classified (atr/aligned_classifier.h)
@@ -66,6 +69,9 @@ struct Contact {
   double mine_distance = 0.0;
   double non_mine_distance = 0.0;
   double aspect_min_deg = 0.0, aspect_max_deg = 360.0;
+  // open-set rejection, when the model has it (TrainOptions::reject_quantile)
+  std::optional<double> open_set_score;
+  bool unknown = false;
   std::string status;  // empty when classified
   // detection
   int pings = 0;

@@ -73,6 +73,7 @@ class Reader {
   std::uint16_t u16(const char* what) { return static_cast<std::uint16_t>(uint(2, what)); }
   std::uint32_t u32(const char* what) { return static_cast<std::uint32_t>(uint(4, what)); }
   double f64(const char* what) { return std::bit_cast<double>(uint(8, what)); }
+  float f32(const char* what) { return std::bit_cast<float>(u32(what)); }
   // n float32 values into dst
   void f32s(float* dst, std::size_t n, const char* what) {
     need(n * 4, what);
@@ -110,6 +111,7 @@ void write_class(Writer& w, const ClassModel& c, std::size_t n) {
   w.u8(c.mine_like ? 1 : 0);
   w.u8(0);
   w.u32(static_cast<std::uint32_t>(c.subspaces.size()));
+  w.f32(c.reject_distance);  // version 2
   for (const Subspace& s : c.subspaces) {
     w.f64(s.aspect_min_deg);
     w.f64(s.aspect_max_deg);
@@ -126,7 +128,7 @@ void write_class(Writer& w, const ClassModel& c, std::size_t n) {
   }
 }
 
-ClassModel read_class(Reader& r, const Model& m, const char* kind, std::size_t index) {
+ClassModel read_class(Reader& r, const Model& m, int version, const char* kind, std::size_t index) {
   ClassModel c;
   const std::string label = std::string(kind) + " " + std::to_string(index);
   const std::uint16_t len = r.u16("class name length");
@@ -144,6 +146,7 @@ ClassModel read_class(Reader& r, const Model& m, const char* kind, std::size_t i
     r.fail(label + " '" + c.name + "': subspace count " + std::to_string(count) +
            " (allowed 1 to the aspect sector count " + std::to_string(m.aspect_sectors) + ")");
   }
+  if (version >= 2) c.reject_distance = r.f32("reject distance");
   const std::size_t n = m.feature_count();
   for (std::uint32_t s = 0; s < count; ++s) {
     Subspace sub;
@@ -279,9 +282,9 @@ Model decode_model(std::span<const std::uint8_t> bytes, const std::string& name)
       }
     }
     for (std::uint32_t c = 0; c < classes; ++c)
-      m.classes.push_back(read_class(r, m, "class", c));
+      m.classes.push_back(read_class(r, m, version, "class", c));
     for (std::uint32_t g = 0; g < groups; ++g)
-      m.groups.push_back(read_class(r, m, "group", g));
+      m.groups.push_back(read_class(r, m, version, "group", g));
     r.need(4, "the checksum trailer");
     if (r.left() > 4) {
       r.fail(std::to_string(r.left() - 4) + " unexpected bytes after the last record");

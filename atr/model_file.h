@@ -26,6 +26,7 @@
 //     u8     mine_like (0 or 1)
 //     u8     0 (reserved)
 //     u32    subspace count S (>= 1)
+//     f32    reject distance (version 2): open-set threshold, +infinity for none
 //     S subspace records:
 //       f64      aspect_min_deg, f64 aspect_max_deg   the sector [min, max), within [0, 360]
 //       u32      train_count k (>= 1)

@@ -173,6 +173,10 @@ void OnboardPipeline::report(const Detection& d) {
         const Subspace& sub = cls.subspaces[static_cast<std::size_t>(r.subspace_index)];
         c.aspect_min_deg = sub.aspect_min_deg;
         c.aspect_max_deg = sub.aspect_max_deg;
+        if (std::isfinite(cls.reject_distance)) {
+          c.open_set_score = r.open_set_score;
+          c.unknown = r.unknown;
+        }
         c.shift_rows = a.dr;
         c.shift_cols = a.dc;
         centre = cutter_->shifted(centre, a.dr, a.dc);

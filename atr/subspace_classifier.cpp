@@ -26,6 +26,10 @@ void validate_class(const ClassModel& c, const Model& m, const std::string& what
   if (c.subspaces.empty()) {
     throw std::runtime_error(what + " '" + c.name + "' has no subspace");
   }
+  if (!(c.reject_distance > 0.0f)) {  // NaN too; +infinity means no rejection
+    throw std::runtime_error(what + " '" + c.name + "': reject distance " +
+                             std::to_string(c.reject_distance) + " is not positive");
+  }
   for (std::size_t s = 0; s < c.subspaces.size(); ++s) {
     const Subspace& sub = c.subspaces[s];
     const std::string where = subspace_label(c, s);
@@ -180,6 +184,46 @@ ClassModel fit_class(const Prepared& pr, const std::vector<std::size_t>& cols,
   return cm;
 }
 
+// The class distance (the smallest over its subspaces) of a normalised chip.
+float class_distance_of(const ClassModel& c, const Eigen::VectorXf& x, Eigen::VectorXf& work_n,
+                        Eigen::VectorXf& work_p) {
+  float best = kInfinity;
+  for (const Subspace& s : c.subspaces) {
+    if (work_p.size() < s.rank()) work_p.resize(s.rank());
+    best = std::min(best, subspace_residual(s, x, work_n, work_p));
+  }
+  return best;
+}
+
+// Open-set threshold of one class: the q-quantile (nearest rank) of its chips' distances to
+// subspaces fitted, fold by fold, without them. Needs at least two chips per fold's training
+// part; returns +infinity when the class is too small to calibrate.
+float calibrate_reject_distance(const Prepared& pr, const std::vector<std::size_t>& cols,
+                                const TrainOptions& opt) {
+  const std::size_t folds =
+      std::min<std::size_t>(static_cast<std::size_t>(opt.reject_folds), cols.size());
+  if (folds < 2) return kInfinity;
+  std::vector<float> d;
+  Eigen::VectorXf x(pr.x.rows()), work_n(pr.x.rows()), work_p(1);
+  for (std::size_t f = 0; f < folds; ++f) {
+    std::vector<std::size_t> train, held;
+    for (std::size_t i = 0; i < cols.size(); ++i)
+      (i % folds == f ? held : train).push_back(cols[i]);
+    if (train.size() < 2) continue;
+    const ClassModel c = fit_class(pr, train, "fold", false, opt);
+    for (const std::size_t h : held) {
+      x = pr.x.col(static_cast<Eigen::Index>(h)).cast<float>();
+      // a chip of an aspect sector with no training chip in this fold: not scored
+      if (c.subspaces.empty()) continue;
+      d.push_back(class_distance_of(c, x, work_n, work_p));
+    }
+  }
+  if (d.empty()) return kInfinity;
+  std::sort(d.begin(), d.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(opt.reject_quantile * d.size()));
+  return d[std::clamp<std::size_t>(rank, 1, d.size()) - 1];
+}
+
 }  // namespace
 
 int Model::find_class(std::string_view name) const {
@@ -301,6 +345,14 @@ Model train_model(std::span<const LabelledChip> chips, const TrainOptions& opt,
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(e.what());
   }
+  if (!(opt.reject_quantile >= 0.0 && opt.reject_quantile < 1.0)) {
+    throw std::runtime_error("reject quantile " + std::to_string(opt.reject_quantile) +
+                             " (allowed 0, off, or in (0, 1))");
+  }
+  if (opt.reject_folds < 2 || opt.reject_folds > 100) {
+    throw std::runtime_error("reject folds = " + std::to_string(opt.reject_folds) +
+                             " (allowed 2 to 100)");
+  }
   if (opt.aspect_sectors < 1 || opt.aspect_sectors > 360) {
     throw std::runtime_error("aspect sectors = " + std::to_string(opt.aspect_sectors) +
                              " (allowed 1 to 360)");
@@ -334,6 +386,9 @@ Model train_model(std::span<const LabelledChip> chips, const TrainOptions& opt,
 
   for (std::size_t c = 0; c < pr.names.size(); ++c) {
     m.classes.push_back(fit_class(pr, pr.members[c], pr.names[c], mine[c], opt));
+    if (opt.reject_quantile > 0.0) {
+      m.classes.back().reject_distance = calibrate_reject_distance(pr, pr.members[c], opt);
+    }
   }
   if (opt.group_subspaces) {
     std::vector<std::size_t> mine_cols, other_cols;
@@ -428,6 +483,9 @@ ChipCheck Classifier::classify(ChipView chip) {
   r.subspace_index = r.class_subspace[static_cast<std::size_t>(best_i)];
   r.runner_up = second_i;
   r.runner_up_distance = second;
+  const float tau = model_.classes[static_cast<std::size_t>(best_i)].reject_distance;
+  r.open_set_score = std::isfinite(tau) ? best / tau : 0.0f;
+  r.unknown = r.open_set_score > 1.0f;
 
   // mine / non-mine (Section 4.1.2)
   r.mine_like_by_identity = model_.classes[static_cast<std::size_t>(best_i)].mine_like;

@@ -37,6 +37,11 @@
 // class distance is the smallest distance over its subspaces; the nearest subspace also tells
 // the likely aspect range.
 //
+// Open-set rejection (ours). A class may carry a reject distance, calibrated on its training
+// chips by cross-validation (TrainOptions::reject_quantile); a chip whose distance to the
+// identified class exceeds it is reported unknown: an object of a type the model was not
+// trained on should lie far from every subspace instead of being forced into the nearest one.
+//
 // Mine / non-mine (Section 4.1.2). Each class carries a mine_like flag (by default from
 // sim/targets/target_type.h: Manta, Rockan, cylinder and cuboid are mine-like; names not in that
 // table are non-mine unless TrainOptions::mine_classes says otherwise). On top of
@@ -53,6 +58,7 @@
 // eigen-decomposition, O(k n p) for U; classification costs about 4 n p flops per subspace.
 #include <Eigen/Dense>
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -92,6 +98,9 @@ struct ClassModel {
   std::string name;
   bool mine_like = false;
   std::vector<Subspace> subspaces;  // one per aspect sector that had training chips
+  // Open-set rejection: a chip identified as this class whose distance exceeds this is reported
+  // as unknown; +infinity (the default) never rejects. See TrainOptions::reject_quantile.
+  float reject_distance = std::numeric_limits<float>::infinity();
 };
 
 // A trained model: plain data, saved and loaded by atr/model_file.h.
@@ -146,6 +155,13 @@ struct TrainOptions {
   int aspect_sectors = 1;        // N >= 1; N > 1 needs every chip's aspect_deg
   bool group_subspaces = false;  // also train pooled "mine" / "non_mine" subspaces
   ChipPreprocess preprocess;     // stored in the model, applied before eq. 9
+  // Open-set rejection (ours; the paper always picks a known class). When in (0, 1), each
+  // class's reject_distance is the reject_quantile-quantile of its own chips' distances to
+  // its subspaces in a reject_folds-fold cross-validation over the training chips (each chip
+  // scored by a subspace trained without it), so that about 1 - q of a known class's chips are
+  // expected to be rejected. 0 leaves rejection off.
+  double reject_quantile = 0.0;
+  int reject_folds = 5;
   // Class names that are mine-like; when unset, default_mine_like() decides. Every name listed
   // must be a class of the training set.
   std::optional<std::vector<std::string>> mine_classes;
@@ -182,6 +198,10 @@ struct Classification {
   bool by_group_subspaces = false;     // scores come from the model's dedicated group subspaces
   float mine_distance = 0.0f;          // group scores; +infinity for a group without any class
   float non_mine_distance = 0.0f;
+  // Open-set rejection: distance / the identified class's reject_distance (0 when it has none);
+  // above 1 the chip is unknown (class_index still names the nearest class).
+  float open_set_score = 0.0f;
+  bool unknown = false;
 };
 
 // Classifies chips with a fixed model. Not thread-safe (one per thread); classify() does not

@@ -90,6 +90,13 @@ std::string format_pct(double v) {
   return buf;
 }
 
+// Sec. 4.1.2: the mine-like Manta, Rockan and cylinder, then the non-mine shapes.
+std::vector<TargetType> fig13_classes(const SweepSettings& s) {
+  std::vector<TargetType> out{TargetType::kManta, TargetType::kRockan, TargetType::kCylinder};
+  out.insert(out.end(), s.non_mine.begin(), s.non_mine.end());
+  return out;
+}
+
 // The pre-processing variants of the ablation: each factor alone, then the combinations.
 std::vector<ChipPreprocess> ablation_variants() {
   std::vector<ChipPreprocess> v(1);  // eq. 9 only (the paper)
@@ -148,7 +155,8 @@ LabelledChip labelled_chip(const render::ChipImage& c) {
 }
 
 std::vector<std::string> sweep_experiment_names() {
-  return {"fig11", "fig13", "fig15", "aspect", "snr", "altitude", "train_size", "p", "ablation"};
+  return {"fig11",    "fig13",      "fig15", "aspect",   "snr",
+          "altitude", "train_size", "p",     "open_set", "ablation"};
 }
 
 SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettings& s) {
@@ -164,8 +172,7 @@ SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettin
   } else if (name == "fig13") {
     // Sec. 4.1.2: the mine-like Manta, Rockan and cylinder against the non-mine shapes
     e.title = "Fig. 13: mine-like and non-mine targets, identification and mine / non-mine";
-    e.classes = {TargetType::kManta, TargetType::kRockan, TargetType::kCylinder};
-    e.classes.insert(e.classes.end(), s.non_mine.begin(), s.non_mine.end());
+    e.classes = fig13_classes(s);
     e.mine_groups = true;
     e.conditions = resolution_curve(s, highlight_resolutions_cm());
   } else if (name == "fig15") {
@@ -216,6 +223,24 @@ SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettin
           c.p = static_cast<int>(v);
           return c.p < s.train_count;  // rank <= k - 1
         });
+  } else if (name == "open_set") {
+    e.title = "Open-set rejection: each of the seven targets left out of training in turn";
+    e.classes = fig13_classes(s);
+    const std::vector<double> res =
+        s.resolutions_cm.empty() ? std::vector<double>{5.0, 15.0} : s.resolutions_cm;
+    for (double cm : res) {
+      for (int h = -1; h < static_cast<int>(e.classes.size()); ++h) {
+        SweepCondition c = base_condition(s, cm);
+        c.held_out = h;
+        c.reject_quantile = s.reject_quantile;
+        c.series =
+            h < 0 ? std::string("none held out")
+                  : "held out: " +
+                        std::string(
+                            targets::target_type_info(e.classes[static_cast<std::size_t>(h)]).key);
+        e.conditions.push_back(c);
+      }
+    }
   } else if (name == "ablation") {
     e.title = "Ablation: chip pre-processing before eq. 9 (highlights)";
     e.conditions = ablation_conditions(s);
@@ -277,6 +302,17 @@ std::vector<LabelledChip> training_prefix(const std::vector<LabelledChip>& chips
   return {chips.begin(), chips.begin() + static_cast<std::ptrdiff_t>(n)};
 }
 
+std::vector<LabelledChip> training_set(const std::vector<LabelledChip>& chips,
+                                       const SweepExperiment& e, const SweepCondition& c) {
+  std::vector<LabelledChip> out = training_prefix(chips, c.train_count, e.classes.size());
+  if (c.held_out >= 0) {
+    const std::string key(
+        targets::target_type_info(e.classes.at(static_cast<std::size_t>(c.held_out))).key);
+    std::erase_if(out, [&](const LabelledChip& l) { return l.label == key; });
+  }
+  return out;
+}
+
 namespace {
 
 std::vector<std::string> class_keys(const std::vector<TargetType>& classes) {
@@ -286,17 +322,21 @@ std::vector<std::string> class_keys(const std::vector<TargetType>& classes) {
   return out;
 }
 
-std::vector<std::string> model_class_names(const Model& m) {
+// The model's classes, and "unknown" when it rejects (open set).
+std::vector<std::string> predicted_names(const Model& m, bool open_set) {
   std::vector<std::string> out;
   for (const auto& c : m.classes)
     out.push_back(c.name);
+  if (open_set) out.emplace_back("unknown");
   return out;
 }
 
 }  // namespace
 
 ConditionResult::ConditionResult(std::size_t index, const SweepExperiment& e, const Model& m)
-    : condition(index), confusion(class_keys(e.classes), model_class_names(m)) {
+    : condition(index),
+      confusion(class_keys(e.classes),
+                predicted_names(m, e.conditions.at(index).reject_quantile > 0.0)) {
   const auto cells = e.classes.size() * static_cast<std::size_t>(std::max(e.aspect_bins, 0));
   aspect_n.assign(cells, 0);
   aspect_errors.assign(cells, 0);
@@ -306,10 +346,22 @@ ConditionResult::ConditionResult(std::size_t index, const SweepExperiment& e, co
 
 void score_chip(ConditionResult& out, const SweepExperiment& e, const Model& m, std::size_t truth,
                 double aspect_deg, int seabed, const Classification& r) {
-  const auto predicted = static_cast<std::size_t>(r.class_index);
+  const SweepCondition& c = e.conditions.at(out.condition);
+  if (c.held_out >= 0 && truth == static_cast<std::size_t>(c.held_out)) {
+    ++out.unknown_n;
+    out.unknown_accepted += !r.unknown;
+    return;
+  }
+  const bool open_set = c.reject_quantile > 0.0;
+  if (open_set) {
+    ++out.known_n;
+    out.known_rejected += r.unknown;
+  }
+  const bool unknown = open_set && r.unknown;
+  const auto predicted = unknown ? m.classes.size() : static_cast<std::size_t>(r.class_index);
   out.confusion.add(truth, predicted);
   const TargetType t = e.classes.at(truth);
-  const bool wrong = m.classes.at(predicted).name != targets::target_type_info(t).key;
+  const bool wrong = unknown || m.classes.at(predicted).name != targets::target_type_info(t).key;
   if (e.mine_groups) {
     ++out.mine_n;
     out.mine_errors += r.mine_like != targets::target_type_info(t).mine_like;
@@ -369,6 +421,14 @@ std::string results_csv(const SweepExperiment& e, const std::vector<ConditionRes
     if (e.mine_groups) {
       out +=
           csv_row(e, c, r, c.x_name, c.x, "mine_vs_non_mine", error_rate(r.mine_errors, r.mine_n));
+    }
+    if (c.reject_quantile > 0.0) {
+      out +=
+          csv_row(e, c, r, c.x_name, c.x, "false_reject", error_rate(r.known_rejected, r.known_n));
+    }
+    if (c.held_out >= 0) {
+      out += csv_row(e, c, r, c.x_name, c.x, "unknown_accepted",
+                     error_rate(r.unknown_accepted, r.unknown_n));
     }
     if (r.seabed_n.size() > 1) {
       for (std::size_t b = 0; b < r.seabed_n.size(); ++b) {

@@ -27,6 +27,9 @@
 //   altitude    stability: fixed sonar altitudes 2-20 m (grazing angle), at 5 cm.
 //   train_size  stability: training chips per class 5-320, at 5 cm.
 //   p           stability and speed: subspace dimension p 1-80, at 5 cm.
+//   open_set    open-set rejection on the seven targets of fig13: each type in turn is left out
+//               of training, and its test chips should be rejected as unknown; the known
+//               types' false-reject rate (5 and 15 cm).
 //   ablation    the chip pre-processing factors of atr/chip_preprocess.h (crop, multilook,
 //               levels against the seabed), one at a time and combined, at 5 and 15 cm, on
 //               the four targets' highlights; every experiment also scores each test seabed.
@@ -76,6 +79,7 @@ struct SweepSettings {
   render::RendererKind renderer = render::RendererKind::kProfile;
   // every condition's chip pre-processing (the ablation sets its own); default none, as the paper
   ChipPreprocess preprocess;
+  double reject_quantile = 0.95;  // open_set's calibration quantile
 };
 
 // One point of an experiment.
@@ -93,6 +97,10 @@ struct SweepCondition {
   int p = kDefaultSubspaceDim;
   int aspect_sectors = 1;
   ChipPreprocess preprocess;  // the model's pre-processing (TrainOptions::preprocess)
+  // open-set rejection: a class left out of training (index into the experiment's classes,
+  // -1 none) and the calibration quantile (TrainOptions::reject_quantile, 0 off)
+  int held_out = -1;
+  double reject_quantile = 0.0;
 };
 
 struct SweepExperiment {
@@ -130,6 +138,9 @@ render::ChipDatasetSpec render_group_spec(const SweepExperiment& e, const Render
 // A training set: the first count x classes chips of `chips` (count per class).
 std::vector<LabelledChip> training_prefix(const std::vector<LabelledChip>& chips, int count,
                                           std::size_t classes);
+// A condition's training set: its prefix, without the held-out class's chips.
+std::vector<LabelledChip> training_set(const std::vector<LabelledChip>& chips,
+                                       const SweepExperiment& e, const SweepCondition& c);
 
 // The scores of one condition.
 struct ConditionResult {
@@ -138,7 +149,10 @@ struct ConditionResult {
   std::size_t mine_n = 0, mine_errors = 0;
   std::vector<std::size_t> aspect_n, aspect_errors;  // (classes x aspect bins), row-major
   std::vector<std::size_t> seabed_n, seabed_errors;  // (seabeds) identification per test seabed
-  std::size_t rejected = 0;                          // degenerate test chips
+  // open-set rejection: known-class chips called unknown; held-out-class chips not called unknown
+  std::size_t known_n = 0, known_rejected = 0;
+  std::size_t unknown_n = 0, unknown_accepted = 0;
+  std::size_t rejected = 0;  // degenerate test chips
   // timings, filled by the caller: thread-seconds to render one chip, seconds to train the
   // model, seconds to classify one chip (one thread)
   double render_s_per_chip = 0.0;
@@ -159,8 +173,11 @@ void score_chip(ConditionResult& out, const SweepExperiment& e, const Model& m, 
 //            ci_high_pct,train_per_class,p,aspect_sectors,render_ms_per_chip,train_s,
 //            classify_ms_per_chip,complete
 //   with class = a target key, "all" (identification over all classes), "mine_vs_non_mine",
-//   or "seabed_NAME" (identification over the test chips on that seabed, when there are
-//   several); the aspect experiment adds rows with x_name = "aspect_deg" (bin centre) per series.
+//   "seabed_NAME" (identification over the test chips on that seabed, when there are
+//   several), "false_reject" (known-class chips called unknown) or "unknown_accepted"
+//   (held-out chips not called unknown); with open-set rejection a known chip called unknown is
+//   a misidentification, and held-out chips are left out of the per-class rows and "all";
+//   the aspect experiment adds rows with x_name = "aspect_deg" (bin centre) per series.
 std::string results_csv(const SweepExperiment& e, const std::vector<ConditionResult>& results);
 //   confusion: experiment,series,x_name,x,truth,predicted,count
 std::string confusion_csv(const SweepExperiment& e, const std::vector<ConditionResult>& results);

@@ -145,6 +145,8 @@ int run_classify(const std::vector<std::string>& argv) {
                   static_cast<double>(x.runner_up_distance));
     }
     std::printf(" %-9s", x.mine_like ? "mine" : "non-mine");
+    if (x.unknown)
+      std::printf(" UNKNOWN (open-set score %.2f)", static_cast<double>(x.open_set_score));
     if (!r.chip->label.empty())
       std::printf(" truth %s%s", r.chip->label.c_str(), r.chip->label == pred ? "" : "  WRONG");
     std::printf("\n");
@@ -249,6 +251,10 @@ int run_classify(const std::vector<std::string>& argv) {
       w.field("mine_like", x.mine_like).field("mine_like_by_identity", x.mine_like_by_identity);
       w.field("mine_distance", static_cast<double>(x.mine_distance), 7);
       w.field("non_mine_distance", static_cast<double>(x.non_mine_distance), 7);
+      if (std::isfinite(cls.reject_distance)) {
+        w.field("unknown", x.unknown)
+            .field("open_set_score", static_cast<double>(x.open_set_score), 7);
+      }
       w.key("distances").begin_object();
       for (std::size_t i = 0; i < m.classes.size(); ++i) {
         w.field(m.classes[i].name, static_cast<double>(x.class_distance[i]), 7);

@@ -133,6 +133,14 @@ void print_result(const atr::SweepExperiment& e, const atr::ConditionResult& r) 
     std::printf(", mine/non-mine %5.2f %% [%5.2f, %5.2f]", 100.0 * m.rate, 100.0 * m.ci.lo,
                 100.0 * m.ci.hi);
   }
+  if (c.reject_quantile > 0.0) {
+    std::printf(", false reject %5.2f %%",
+                100.0 * atr::error_rate(r.known_rejected, r.known_n).rate);
+  }
+  if (c.held_out >= 0) {
+    std::printf(", held-out type accepted %5.2f %%",
+                100.0 * atr::error_rate(r.unknown_accepted, r.unknown_n).rate);
+  }
   if (r.rejected > 0) std::printf(", %zu degenerate chips not scored", r.rejected);
   std::printf("; render %.1f ms/chip, train %.2f s, classify %.3f ms/chip%s\n",
               1e3 * r.render_s_per_chip, r.train_s, 1e3 * r.classify_s_per_chip,
@@ -175,8 +183,8 @@ bool run_experiment(const atr::SweepExperiment& e, RunContext& ctx,
         opt.skip_degenerate = true;
         const auto t0 = Clock::now();
         opt.preprocess = c.preprocess;
-        atr::Model model =
-            atr::train_model(atr::training_prefix(train, c.train_count, classes), opt);
+        opt.reject_quantile = c.reject_quantile;
+        atr::Model model = atr::train_model(atr::training_set(train, e, c), opt);
         Trial t;
         t.result = std::make_unique<atr::ConditionResult>(ci, e, model);
         t.result->train_s = seconds_since(t0);
@@ -280,7 +288,8 @@ int run_sweep(const std::vector<std::string>& argv) {
                          {"--crop"},
                          {"--multilook"},
                          {"--levels"},
-                         {"--threshold-db"}});
+                         {"--threshold-db"},
+                         {"--reject-quantile"}});
   if (!args.positionals().empty()) {
     throw UsageError("unexpected argument '" + args.positionals()[0] + "'");
   }
@@ -296,6 +305,7 @@ int run_sweep(const std::vector<std::string>& argv) {
   s.seabeds = parse_seabeds(args.get_or("--seabed", kDefaultSeabeds));
   s.renderer = renderer_option(args);
   s.preprocess = preprocess_options(args);
+  s.reject_quantile = args.get_double("--reject-quantile", 0.01, 0.9999).value_or(0.95);
   const std::string sonar_arg = args.get_or("--sonar", std::string(config::kDefaultSonarPreset));
   const std::string ext = fs::path(sonar_arg).extension().string();
   s.sonar = ext == ".yaml" || ext == ".yml" ? config::load_sonar(sonar_arg)
@@ -380,6 +390,9 @@ experiments (--experiment, repeatable, or 'all'; default fig11):
   altitude    fixed sonar altitudes 2-20 m (grazing angle), 5 cm
   train_size  5-320 training chips per target, 5 cm
   p           subspace dimension 1-79 (below --train-count), 5 cm
+  open_set    open-set rejection on fig13's seven targets: each left out of training in
+              turn (its chips should be called unknown), and none left out; the known
+              chips' false-reject rate; 5 and 15 cm (or --resolutions-cm)
   ablation    chip pre-processing before eq. 9 (crop to the chip centre, multilook
               speckle averaging, levels against the seabed), each alone and combined, at
               5 and 15 cm (or --resolutions-cm), the four targets' highlights
@@ -390,8 +403,9 @@ Writes to --out DIR (rewritten after every resolution, so an interrupted run kee
   NAME.csv            experiment,series,x_name,x,resolution_cm,class,n,errors,error_pct,
                       ci_low_pct,ci_high_pct,train_per_class,p,aspect_sectors,
                       render_ms_per_chip,train_s,classify_ms_per_chip,complete
-                      (class: a target, 'all', 'mine_vs_non_mine', or 'seabed_NAME' for
-                      the test chips on one seabed; render time is thread-seconds per chip)
+                      (class: a target, 'all', 'mine_vs_non_mine', 'seabed_NAME' for
+                      the test chips on one seabed, 'false_reject' / 'unknown_accepted' for
+                      open_set; render time is thread-seconds per chip)
   NAME_confusion.csv  experiment,series,x_name,x,truth,predicted,count
   *.png               charts by tools/plot_sweep.py (run when matplotlib is available,
                       otherwise the command is printed)
@@ -416,6 +430,7 @@ options:
   --crop F, --multilook K, --levels L, --threshold-db T
                        chip pre-processing before eq. 9 for every experiment but ablation,
                        as `sonarloop train` (default none, as the paper)
+  --reject-quantile Q  open_set's calibration quantile (default 0.95), as `sonarloop train`
 
 Ctrl-C stops after the chip in progress; the CSV files keep every condition scored so far.
 Same --seed and counts give the same counts and rates on any --threads (times differ).

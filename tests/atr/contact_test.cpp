@@ -80,3 +80,17 @@ TEST_CASE("contact: JSON lines, read back by Python") {
       dir.file("c.jsonl");
   CHECK(testing::run_command(py) == 0);
 }
+
+TEST_CASE("contact: open-set fields only for a model with rejection") {
+  atr::Contact c = classified();
+  CHECK(atr::contact_json(c).find("unknown") == std::string::npos);
+  CHECK(atr::contact_json(c).find("open_set_score") == std::string::npos);
+  c.open_set_score = 1.25;
+  c.unknown = true;
+  const std::string j = atr::contact_json(c);
+  CHECK(j.find("\"unknown\":true,\"open_set_score\":1.25") != std::string::npos);
+  c.open_set_score = 0.5;
+  c.unknown = false;
+  CHECK(atr::contact_json(c).find("\"unknown\":false,\"open_set_score\":0.5") !=
+        std::string::npos);
+}

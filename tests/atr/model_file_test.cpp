@@ -2,6 +2,7 @@
 // layout is as documented; bad magic, versions, truncation, trailing bytes, corruption and
 // inconsistent contents are clear errors.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -136,12 +137,13 @@ TEST_CASE("model file: the byte layout is the documented one") {
   // first class record: "cuboid" (classes are sorted by name)
   CHECK((b[60] | b[61] << 8) == 6);
   CHECK(std::string(b.begin() + 62, b.begin() + 68) == "cuboid");
-  CHECK(b[68] == 1);        // cuboid is mine-like
-  CHECK(le32(b, 70) == 1);  // one subspace
+  CHECK(b[68] == 1);                  // cuboid is mine-like
+  CHECK(le32(b, 70) == 1);            // one subspace
+  CHECK(le32(b, 74) == 0x7F800000u);  // reject distance +infinity: no open-set rejection
   // size: header + pre-processing + per class (name record + subspaces) + crc
   std::size_t expect = 36 + 24 + 4;
   for (const auto& c : m.classes) {
-    expect += 2 + c.name.size() + 2 + 4;
+    expect += 2 + c.name.size() + 2 + 4 + 4;
     for (const auto& s : c.subspaces) {
       expect += 16 + 8 + 8 * s.rank() + 4 * 48 * (1 + s.rank());
     }
@@ -219,7 +221,7 @@ TEST_CASE("model file: inconsistent contents are rejected even with a valid chec
   CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("exceeds p = 2"));
   // a NaN in the first mean image (the first class: name "cuboid", 1 subspace, rank 5)
   b = good;
-  const std::size_t mean_at = 36 + 24 + 2 + 6 + 2 + 4 + 16 + 8 + 8 * 5;
+  const std::size_t mean_at = 36 + 24 + 2 + 6 + 2 + 4 + 4 + 16 + 8 + 8 * 5;
   put_le32(b, mean_at, 0x7FC00000u);
   fix_crc(b);
   CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("non-finite"));
@@ -255,25 +257,44 @@ TEST_CASE("model file: a pre-processing model round-trips; version 1 reads as no
   TrainOptions opt;
   opt.p = 4;
   opt.preprocess = ChipPreprocess{0.5, 3, ChipLevels::kAboveSeabed, 4.5};
+  opt.reject_quantile = 0.9;
   const Model m = train_model(chips(12, 5, false), opt);
   REQUIRE(m.feature_width() == 4);
   REQUIRE(m.feature_height() == 3);
+  REQUIRE(std::isfinite(m.classes[0].reject_distance));
   const Model back = decode_model(encode_model(m), "pre");
   CHECK(back.preprocess.crop_fraction == 0.5);
   CHECK(back.preprocess.multilook_px == 3);
   CHECK(back.preprocess.levels == ChipLevels::kAboveSeabed);
   CHECK(back.preprocess.threshold_db == 4.5);
   CHECK(back.classes[0].subspaces[0].mean.size() == 12);
+  CHECK(back.classes[0].reject_distance == m.classes[0].reject_distance);
   CHECK(encode_model(back) == encode_model(m));
 
-  // a version 1 file: the version 2 bytes without the pre-processing record
+  // a version 1 file: the version 2 bytes without the pre-processing record and without the
+  // reject distance of each class record
   const Model plain = trained(false);
   const auto v2 = encode_model(plain);
   std::vector<std::uint8_t> v1(v2.begin(), v2.begin() + 36);
-  v1.insert(v1.end(), v2.begin() + 60, v2.end());
+  std::size_t at = 60;
+  for (const ClassModel& c : plain.classes) {
+    const std::size_t head = 2 + c.name.size() + 2 + 4;  // up to the subspace count
+    v1.insert(v1.end(), v2.begin() + static_cast<long>(at),
+              v2.begin() + static_cast<long>(at + head));
+    at += head + 4;  // skip the reject distance
+    std::size_t body = 0;
+    for (const auto& sub : c.subspaces)
+      body += 16 + 8 + 8 * sub.rank() + 4 * plain.feature_count() * (1 + sub.rank());
+    v1.insert(v1.end(), v2.begin() + static_cast<long>(at),
+              v2.begin() + static_cast<long>(at + body));
+    at += body;
+  }
+  REQUIRE(at + 4 == v2.size());
+  v1.insert(v1.end(), 4, 0);  // the checksum, fixed below
   v1[6] = 1;
   fix_crc(v1);
   const Model old = decode_model(v1, "v1");
   CHECK(old.preprocess.is_identity());
+  CHECK(std::isinf(old.classes[0].reject_distance));
   expect_same(plain, old);
 }

@@ -399,3 +399,60 @@ TEST_CASE("subspace classifier: multi-aspect subspaces beat one subspace on rota
     CHECK(aspect_hits > 0.8);
   }
 }
+
+TEST_CASE("subspace classifier: open-set rejection calibrated by cross-validation") {
+  // train on three of four classes; the fourth is a type the model never saw
+  const LinearClasses lc = testing::make_linear_classes(4, 16, 16, 3, 11);
+  std::vector<LabelledChip> train;
+  for (auto& c : linear_set(lc, 40, 5, 0.05)) {
+    if (c.label != "rock") train.push_back(std::move(c));
+  }
+  const auto test = linear_set(lc, 60, 6, 0.05);
+  const auto rates = [&](double q) {
+    TrainOptions opt;
+    opt.p = 6;
+    opt.reject_quantile = q;
+    Classifier clf(train_model(train, opt));
+    int known = 0, false_reject = 0, unknown = 0, rejected_unknown = 0;
+    for (const auto& t : test) {
+      REQUIRE(clf.classify(t.chip.view()).ok());
+      const Classification& r = clf.result();
+      CHECK(r.unknown == (r.open_set_score > 1.0f));
+      if (t.label == "rock") {
+        ++unknown;
+        rejected_unknown += r.unknown;
+      } else {
+        ++known;
+        false_reject += r.unknown;
+      }
+    }
+    return std::pair<double, double>{static_cast<double>(false_reject) / known,
+                                     static_cast<double>(rejected_unknown) / unknown};
+  };
+  // off: nothing is ever unknown, whatever its distance
+  {
+    TrainOptions opt;
+    opt.p = 6;
+    Classifier clf(train_model(train, opt));
+    CHECK(std::isinf(clf.model().classes[0].reject_distance));
+    REQUIRE(clf.classify(test.back().chip.view()).ok());  // a rock
+    CHECK_FALSE(clf.result().unknown);
+    CHECK(clf.result().open_set_score == 0.0f);
+  }
+  // q = 0.95: about 5 % of the known chips rejected, the unknown type all rejected
+  const auto [fr95, tr95] = rates(0.95);
+  CHECK(fr95 <= 0.15);
+  CHECK(tr95 >= 0.95);
+  // q = 0.5: the threshold is the median held-out distance, so about half the known chips go
+  const auto [fr50, tr50] = rates(0.5);
+  CHECK(fr50 > 0.25);
+  CHECK(fr50 < 0.75);
+  CHECK(tr50 >= tr95);
+  // bad options
+  TrainOptions bad;
+  bad.reject_quantile = 1.0;
+  CHECK_THROWS_WITH(train_model(train, bad), Catch::Contains("reject quantile"));
+  bad.reject_quantile = 0.9;
+  bad.reject_folds = 1;
+  CHECK_THROWS_WITH(train_model(train, bad), Catch::Contains("reject folds"));
+}

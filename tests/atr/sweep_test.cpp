@@ -219,5 +219,63 @@ TEST_CASE("ablation: every pre-processing variant at each resolution, labelled",
   CHECK(g[0].resolutions_m.size() == 2);
 }
 
+TEST_CASE("open_set: each of the seven held out in turn; scoring and rows", "[sweep]") {
+  SweepSettings s = settings();
+  s.resolutions_cm = {5};
+  const SweepExperiment e = make_sweep_experiment("open_set", s);
+  REQUIRE(e.classes.size() == 7);
+  REQUIRE(e.conditions.size() == 8);  // none held out, then each of the seven
+  CHECK(e.conditions[0].held_out == -1);
+  CHECK(e.conditions[0].series == "none held out");
+  CHECK(e.conditions[2].held_out == 1);
+  CHECK(e.conditions[2].series == "held out: rockan");
+  for (const auto& c : e.conditions)
+    CHECK(c.reject_quantile == 0.95);
+
+  // the training set of "held out: rockan" has no rockan chip, the others keep theirs
+  std::vector<LabelledChip> chips;
+  for (int k = 0; k < 3; ++k) {
+    for (TargetType t : e.classes) {
+      LabelledChip l;
+      l.label = std::string(targets::target_type_info(t).key);
+      chips.push_back(l);
+    }
+  }
+  const auto train = training_set(chips, e, e.conditions[2]);
+  CHECK(train.size() == 3 * 6);
+  CHECK(std::none_of(train.begin(), train.end(),
+                     [](const LabelledChip& l) { return l.label == "rockan"; }));
+  CHECK(training_set(chips, e, e.conditions[0]).size() == 3 * 7);
+
+  // a model of the six others; its predictions gain an "unknown" column
+  std::vector<std::string> names;
+  for (TargetType t : e.classes) {
+    if (t != TargetType::kRockan) names.emplace_back(targets::target_type_info(t).key);
+  }
+  const Model m = toy_model(names);  // manta, cylinder, large_cuboid, ...
+  ConditionResult r(2, e, m);
+  REQUIRE(r.confusion.predicted_classes().back() == "unknown");
+  Classification c;
+  c.class_index = 0;                  // manta
+  score_chip(r, e, m, 0, 0.0, 0, c);  // manta, accepted: right
+  c.unknown = true;
+  score_chip(r, e, m, 0, 0.0, 0, c);  // manta, rejected: a false reject, a misidentification
+  score_chip(r, e, m, 1, 0.0, 0, c);  // rockan (held out), rejected: right
+  c.unknown = false;
+  score_chip(r, e, m, 1, 0.0, 0, c);  // rockan, accepted as manta: wrong
+  CHECK(r.known_n == 2);
+  CHECK(r.known_rejected == 1);
+  CHECK(r.unknown_n == 2);
+  CHECK(r.unknown_accepted == 1);
+  CHECK(r.confusion.total() == 2);  // held-out chips are not in the confusion matrix
+  const auto rows = lines(results_csv(e, {r}));
+  // 7 classes, all, false_reject, unknown_accepted
+  REQUIRE(rows.size() == 1 + 7 + 1 + 2);
+  CHECK(rows[1].find(",manta,2,1,50.0000,") != std::string::npos);
+  CHECK(rows[8].find(",all,2,1,50.0000,") != std::string::npos);
+  CHECK(rows[9].find(",false_reject,2,1,50.0000,") != std::string::npos);
+  CHECK(rows[10].find(",unknown_accepted,2,1,50.0000,") != std::string::npos);
+}
+
 }  // namespace
 }  // namespace sonarloop::atr

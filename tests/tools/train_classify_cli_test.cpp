@@ -1,6 +1,7 @@
 // End-to-end: `sonarloop train` and `sonarloop classify` on a small generated folder of PNG
 // chips, as a user runs them (real binary, real files; the JSON is read back by Python).
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -161,16 +162,23 @@ TEST_CASE("train/classify cli: train on PNG chips, classify a labelled test fold
 
   // a pre-processing model: stored in the file, applied by classify to the full-size chips
   REQUIRE(run(dir, "train " + train.string() + " --out " + dir.file("crop.slpca") +
-                       " --crop 0.5 --multilook 3 --levels above_seabed") == 0);
+                       " --crop 0.5 --multilook 3 --levels above_seabed --reject-quantile 0.9") ==
+          0);
   CHECK_THAT(slurp(dir.file("stdout.txt")),
-             Catch::Contains("crop 0.5 + multilook 3 + above_seabed (features 8 x 8)"));
+             Catch::Contains("crop 0.5 + multilook 3 + above_seabed (features 8 x 8)") &&
+                 Catch::Contains("unknown beyond distance"));
   const atr::Model m3 = atr::load_model(dir.file("crop.slpca"));
   CHECK(m3.chip_width == 16);
   CHECK(m3.feature_width() == 8);
   CHECK(m3.preprocess.multilook_px == 3);
   CHECK(m3.preprocess.levels == atr::ChipLevels::kAboveSeabed);
-  REQUIRE(run(dir, "classify " + dir.file("crop.slpca") + " " + test.string()) == 0);
+  CHECK(std::isfinite(m3.classes[0].reject_distance));
+  REQUIRE(run(dir, "classify " + dir.file("crop.slpca") + " " + test.string() + " --json " +
+                       dir.file("crop.json")) == 0);
   CHECK_THAT(slurp(dir.file("stdout.txt")), Catch::Contains("classified 30 chips (1 rejected)"));
+  CHECK_THAT(slurp(dir.file("crop.json")), Catch::Contains("\"open_set_score\":"));
+  // the model without open-set rejection reports no such field
+  CHECK_THAT(slurp(json), !Catch::Contains("open_set_score"));
 }
 
 TEST_CASE("train/classify cli: usage and input errors") {

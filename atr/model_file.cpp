@@ -112,6 +112,7 @@ void write_class(Writer& w, const ClassModel& c, std::size_t n) {
   w.u8(0);
   w.u32(static_cast<std::uint32_t>(c.subspaces.size()));
   w.f32(c.reject_distance);  // version 2
+  w.f32(c.typical_distance);
   for (const Subspace& s : c.subspaces) {
     w.f64(s.aspect_min_deg);
     w.f64(s.aspect_max_deg);
@@ -146,7 +147,10 @@ ClassModel read_class(Reader& r, const Model& m, int version, const char* kind, 
     r.fail(label + " '" + c.name + "': subspace count " + std::to_string(count) +
            " (allowed 1 to the aspect sector count " + std::to_string(m.aspect_sectors) + ")");
   }
-  if (version >= 2) c.reject_distance = r.f32("reject distance");
+  if (version >= 2) {
+    c.reject_distance = r.f32("reject distance");
+    c.typical_distance = r.f32("typical distance");
+  }
   const std::size_t n = m.feature_count();
   for (std::uint32_t s = 0; s < count; ++s) {
     Subspace sub;

@@ -27,6 +27,7 @@
 //     u8     0 (reserved)
 //     u32    subspace count S (>= 1)
 //     f32    reject distance (version 2): open-set threshold, +infinity for none
+//     f32    typical distance (version 2): median cross-validated distance, 0 for none
 //     S subspace records:
 //       f64      aspect_min_deg, f64 aspect_max_deg   the sector [min, max), within [0, 360]
 //       u32      train_count k (>= 1)

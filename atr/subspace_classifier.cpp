@@ -30,6 +30,11 @@ void validate_class(const ClassModel& c, const Model& m, const std::string& what
     throw std::runtime_error(what + " '" + c.name + "': reject distance " +
                              std::to_string(c.reject_distance) + " is not positive");
   }
+  if (!(c.typical_distance >= 0.0f && std::isfinite(c.typical_distance))) {
+    throw std::runtime_error(what + " '" + c.name + "': typical distance " +
+                             std::to_string(c.typical_distance) +
+                             " is not a finite non-negative number");
+  }
   for (std::size_t s = 0; s < c.subspaces.size(); ++s) {
     const Subspace& sub = c.subspaces[s];
     const std::string where = subspace_label(c, s);
@@ -195,14 +200,21 @@ float class_distance_of(const ClassModel& c, const Eigen::VectorXf& x, Eigen::Ve
   return best;
 }
 
-// Open-set threshold of one class: the q-quantile (nearest rank) of its chips' distances to
-// subspaces fitted, fold by fold, without them. Needs at least two chips per fold's training
-// part; returns +infinity when the class is too small to calibrate.
-float calibrate_reject_distance(const Prepared& pr, const std::vector<std::size_t>& cols,
-                                const TrainOptions& opt) {
+// The q-quantile (nearest rank) of sorted values.
+float quantile_of_sorted(const std::vector<float>& sorted, double q) {
+  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(sorted.size())));
+  return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
+}
+
+// Cross-validation of one class: its chips' distances to subspaces fitted, fold by fold,
+// without them, sorted. Needs at least two chips per fold's training part; empty when the class
+// is too small.
+std::vector<float> cross_validated_distances(const Prepared& pr,
+                                             const std::vector<std::size_t>& cols,
+                                             const TrainOptions& opt) {
   const std::size_t folds =
       std::min<std::size_t>(static_cast<std::size_t>(opt.reject_folds), cols.size());
-  if (folds < 2) return kInfinity;
+  if (folds < 2) return {};
   std::vector<float> d;
   Eigen::VectorXf x(pr.x.rows()), work_n(pr.x.rows()), work_p(1);
   for (std::size_t f = 0; f < folds; ++f) {
@@ -218,10 +230,8 @@ float calibrate_reject_distance(const Prepared& pr, const std::vector<std::size_
       d.push_back(class_distance_of(c, x, work_n, work_p));
     }
   }
-  if (d.empty()) return kInfinity;
   std::sort(d.begin(), d.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(opt.reject_quantile * d.size()));
-  return d[std::clamp<std::size_t>(rank, 1, d.size()) - 1];
+  return d;
 }
 
 }  // namespace
@@ -386,8 +396,13 @@ Model train_model(std::span<const LabelledChip> chips, const TrainOptions& opt,
 
   for (std::size_t c = 0; c < pr.names.size(); ++c) {
     m.classes.push_back(fit_class(pr, pr.members[c], pr.names[c], mine[c], opt));
-    if (opt.reject_quantile > 0.0) {
-      m.classes.back().reject_distance = calibrate_reject_distance(pr, pr.members[c], opt);
+    if (opt.reject_quantile > 0.0 || opt.calibrate) {
+      const std::vector<float> d = cross_validated_distances(pr, pr.members[c], opt);
+      if (!d.empty()) {
+        m.classes.back().typical_distance = quantile_of_sorted(d, 0.5);
+        if (opt.reject_quantile > 0.0)
+          m.classes.back().reject_distance = quantile_of_sorted(d, opt.reject_quantile);
+      }
     }
   }
   if (opt.group_subspaces) {

@@ -101,6 +101,10 @@ struct ClassModel {
   // Open-set rejection: a chip identified as this class whose distance exceeds this is reported
   // as unknown; +infinity (the default) never rejects. See TrainOptions::reject_quantile.
   float reject_distance = std::numeric_limits<float>::infinity();
+  // The class's typical distance: the median of its own chips' cross-validated distances (see
+  // TrainOptions::calibrate); 0 when not calibrated. Distances divided by it compare across
+  // classes and models (highlight + shadow fusion, atr/fusion.h).
+  float typical_distance = 0.0f;
 };
 
 // A trained model: plain data, saved and loaded by atr/model_file.h.
@@ -162,6 +166,9 @@ struct TrainOptions {
   // expected to be rejected. 0 leaves rejection off.
   double reject_quantile = 0.0;
   int reject_folds = 5;
+  // Cross-validate each class's distances (reject_folds folds) to set typical_distance; also
+  // done whenever reject_quantile > 0. Costs about reject_folds extra fits per class.
+  bool calibrate = false;
   // Class names that are mine-like; when unset, default_mine_like() decides. Every name listed
   // must be a class of the training set.
   std::optional<std::vector<std::string>> mine_classes;

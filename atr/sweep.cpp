@@ -155,8 +155,8 @@ LabelledChip labelled_chip(const render::ChipImage& c) {
 }
 
 std::vector<std::string> sweep_experiment_names() {
-  return {"fig11",    "fig13",      "fig15", "aspect",   "snr",
-          "altitude", "train_size", "p",     "open_set", "ablation"};
+  return {"fig11",      "fig13", "fig15",    "aspect", "snr",     "altitude",
+          "train_size", "p",     "open_set", "fusion", "ablation"};
 }
 
 SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettings& s) {
@@ -241,6 +241,27 @@ SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettin
         e.conditions.push_back(c);
       }
     }
+  } else if (name == "fusion") {
+    e.title = "Highlight + shadow fusion: the same objects from either chip and from both";
+    const std::vector<double> res =
+        s.resolutions_cm.empty() ? std::vector<double>{5.0, 10.0, 15.0, 20.0} : s.resolutions_cm;
+    for (double cm : res) {
+      for (const FusionInput input :
+           {FusionInput::kHighlight, FusionInput::kShadow, FusionInput::kFused}) {
+        for (const FusionNorm norm :
+             {FusionNorm::kClassTypical, FusionNorm::kModelTypical, FusionNorm::kLookZScore}) {
+          if (input != FusionInput::kFused && norm != FusionNorm::kClassTypical) continue;
+          SweepCondition c = base_condition(s, cm);
+          c.fusion = input;
+          c.fusion_norm = norm;
+          c.series = input == FusionInput::kHighlight ? "highlight"
+                     : input == FusionInput::kShadow
+                         ? "shadow"
+                         : std::string("both (") + fusion_norm_name(norm) + ")";
+          e.conditions.push_back(c);
+        }
+      }
+    }
   } else if (name == "ablation") {
     e.title = "Ablation: chip pre-processing before eq. 9 (highlights)";
     e.conditions = ablation_conditions(s);
@@ -293,6 +314,21 @@ render::ChipDatasetSpec render_group_spec(const SweepExperiment& e, const Render
   spec.sonar.source_level_db += g.source_level_offset_db;
   spec.renderer = s.renderer;
   return spec;
+}
+
+std::pair<render::ChipDatasetSpec, render::ChipDatasetSpec> fusion_specs(const SweepExperiment& e,
+                                                                         const RenderGroup& g,
+                                                                         const SweepSettings& s,
+                                                                         bool test) {
+  render::ChipDatasetSpec highlight = render_group_spec(e, g, s, test);
+  highlight.kind = render::ChipKind::kHighlight;
+  // the shadow chips' range for both, so that chip i is the same object in both datasets
+  // (chip_params draws every parameter for either kind)
+  highlight.range_min_m = render::kShadowGroundRange_m;
+  highlight.range_max_m = render::kShadowGroundRange_m;
+  render::ChipDatasetSpec shadow = highlight;
+  shadow.kind = render::ChipKind::kShadow;
+  return {highlight, shadow};
 }
 
 std::vector<LabelledChip> training_prefix(const std::vector<LabelledChip>& chips, int count,

@@ -30,17 +30,22 @@
 //   open_set    open-set rejection on the seven targets of fig13: each type in turn is left out
 //               of training, and its test chips should be rejected as unknown; the known
 //               types' false-reject rate (5 and 15 cm).
+//   fusion      highlight + shadow fusion (atr/fusion.h): the same objects (the four targets at
+//               25 m ground range) identified from their highlight chip, their shadow chip, and
+//               both (5-20 cm).
 //   ablation    the chip pre-processing factors of atr/chip_preprocess.h (crop, multilook,
 //               levels against the seabed), one at a time and combined, at 5 and 15 cm, on
 //               the four targets' highlights; every experiment also scores each test seabed.
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "atr/chip.h"
 #include "atr/chip_preprocess.h"
 #include "atr/confusion.h"
+#include "atr/fusion.h"
 #include "atr/subspace_classifier.h"
 #include "sim/render/chip_renderer.h"
 
@@ -82,6 +87,9 @@ struct SweepSettings {
   double reject_quantile = 0.95;  // open_set's calibration quantile
 };
 
+// Which chips of an object a fusion condition scores.
+enum class FusionInput { kNone, kHighlight, kShadow, kFused };
+
 // One point of an experiment.
 struct SweepCondition {
   std::string series;  // curve label, e.g. "8 sectors"; "" for the single curve
@@ -101,6 +109,8 @@ struct SweepCondition {
   // -1 none) and the calibration quantile (TrainOptions::reject_quantile, 0 off)
   int held_out = -1;
   double reject_quantile = 0.0;
+  FusionInput fusion = FusionInput::kNone;  // the fusion experiment's conditions
+  FusionNorm fusion_norm = FusionNorm::kModelTypical;
 };
 
 struct SweepExperiment {
@@ -134,6 +144,11 @@ std::vector<RenderGroup> render_groups(const SweepExperiment& e);
 // The dataset of a render group: training (test = false, seed S) or test (seed S + 1).
 render::ChipDatasetSpec render_group_spec(const SweepExperiment& e, const RenderGroup& g,
                                           const SweepSettings& settings, bool test);
+
+// The fusion experiment's two datasets of a render group: highlight chips (test = false: seed
+// S) and shadow chips of the same objects, all at the shadow chips' 25 m ground range.
+std::pair<render::ChipDatasetSpec, render::ChipDatasetSpec> fusion_specs(
+    const SweepExperiment& e, const RenderGroup& g, const SweepSettings& settings, bool test);
 
 // A training set: the first count x classes chips of `chips` (count per class).
 std::vector<LabelledChip> training_prefix(const std::vector<LabelledChip>& chips, int count,

@@ -10,8 +10,10 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <thread>
 
+#include "atr/fusion.h"
 #include "atr/sweep.h"
 #include "config/loader/scenario_loader.h"
 #include "config/loader/sonar_loader.h"
@@ -242,6 +244,116 @@ bool run_experiment(const atr::SweepExperiment& e, RunContext& ctx,
   return true;
 }
 
+// Renders the chips of one slot into labelled chips (returns false when stopped).
+bool render_labelled(const render::ChipRenderer& r, int slot, std::size_t count, RunContext& ctx,
+                     std::vector<atr::LabelledChip>& out, double* wall_s) {
+  const std::size_t got = render_slot(
+      r, slot, count, ctx.threads,
+      [&](const render::ChipImage& c) {
+        out.push_back(atr::labelled_chip(c));
+        ctx.bar->update(++ctx.chips_done);
+      },
+      wall_s);
+  return got == count;
+}
+
+// The fusion experiment (atr/fusion.h): per resolution, a highlight model and a shadow model,
+// calibrated, trained on the same objects; each test object is scored from its highlight chip,
+// its shadow chip and both. Returns false when stopped.
+bool run_fusion_experiment(const atr::SweepExperiment& e, RunContext& ctx,
+                           std::vector<atr::ConditionResult>& results) {
+  const std::size_t classes = e.classes.size();
+  for (const atr::RenderGroup& g : atr::render_groups(e)) {
+    const auto [train_h, train_s] = atr::fusion_specs(e, g, ctx.settings, false);
+    const auto [test_h, test_s] = atr::fusion_specs(e, g, ctx.settings, true);
+    const render::ChipRenderer rh(train_h), rs(train_s), th(test_h), ts(test_s);
+    for (std::size_t slot = 0; slot < g.resolutions_m.size(); ++slot) {
+      const auto& members = g.members[slot];
+      const atr::SweepCondition& c0 = e.conditions[members.front()];
+      const std::size_t n_train = static_cast<std::size_t>(g.train_count) * classes;
+      const std::size_t n_test = static_cast<std::size_t>(e.test_count) * classes;
+      const int islot = static_cast<int>(slot);
+      double wall = 0.0, render_s = 0.0;
+      std::vector<atr::LabelledChip> hl, sh;
+      if (!render_labelled(rh, islot, n_train, ctx, hl, &wall)) return false;
+      render_s += wall;
+      if (!render_labelled(rs, islot, n_train, ctx, sh, &wall)) return false;
+      render_s += wall;
+      atr::TrainOptions opt;
+      opt.p = c0.p;
+      opt.skip_degenerate = true;
+      opt.calibrate = true;
+      opt.preprocess = c0.preprocess;
+      const auto t0 = Clock::now();
+      atr::Classifier ch(atr::train_model(atr::training_set(hl, e, c0), opt));
+      atr::Classifier cs(atr::train_model(atr::training_set(sh, e, c0), opt));
+      atr::check_same_classes(ch.model(), cs.model());
+      const double train_s = seconds_since(t0);
+      std::vector<atr::ConditionResult> rs_out;
+      for (std::size_t ci : members)
+        rs_out.emplace_back(ci, e, ch.model());
+
+      // highlight test chips first, then each shadow chip scored with its object's highlight
+      hl.clear();
+      if (!render_labelled(th, islot, n_test, ctx, hl, &wall)) return false;
+      render_s += wall;
+      std::vector<std::optional<atr::Classification>> by_highlight(hl.size());
+      for (std::size_t i = 0; i < hl.size(); ++i) {
+        if (ch.classify(hl[i].chip.view()).ok()) by_highlight[i] = ch.result();
+      }
+      std::vector<float> pixels, fused(classes);
+      double classify_s = 0.0;
+      const std::size_t tested = render_slot(
+          ts, islot, n_test, ctx.threads,
+          [&](const render::ChipImage& c) {
+            ctx.bar->update(++ctx.chips_done);
+            pixels.assign(c.pixels.begin(), c.pixels.end());
+            const auto t1 = Clock::now();
+            const bool shadow_ok = cs.classify(atr::ChipView{c.cols, c.rows, pixels}).ok();
+            classify_s += seconds_since(t1);
+            const auto& h = by_highlight.at(c.params.index);
+            const auto truth = static_cast<std::size_t>(
+                std::find(e.classes.begin(), e.classes.end(), c.params.type) - e.classes.begin());
+            for (std::size_t k = 0; k < members.size(); ++k) {
+              const atr::SweepCondition& cond = e.conditions[members[k]];
+              atr::ConditionResult& r = rs_out[k];
+              if (!shadow_ok || !h) {  // both chips are needed for a like-for-like comparison
+                ++r.rejected;
+                continue;
+              }
+              atr::Classification answer =
+                  cond.fusion == atr::FusionInput::kShadow ? cs.result() : *h;
+              if (cond.fusion == atr::FusionInput::kFused) {
+                std::fill(fused.begin(), fused.end(), 0.0f);
+                atr::add_look(ch.model(), *h, cond.fusion_norm, fused);
+                atr::add_look(cs.model(), cs.result(), cond.fusion_norm, fused);
+                answer.class_index = atr::fused_decision(fused);
+              }
+              atr::score_chip(r, e, ch.model(), truth, c.params.aspect_deg, c.params.seabed,
+                              answer);
+            }
+          },
+          &wall);
+      render_s += wall;
+      for (atr::ConditionResult& r : rs_out) {
+        r.render_s_per_chip = render_s * ctx.threads / static_cast<double>(2 * (n_train + n_test));
+        r.train_s = train_s;
+        r.classify_s_per_chip = tested ? classify_s / static_cast<double>(tested) : 0.0;
+        r.complete = tested == n_test;
+        if (tested == 0) continue;
+        print_result(e, r);
+        results.push_back(std::move(r));
+      }
+      std::sort(results.begin(), results.end(),
+                [](const auto& a, const auto& b) { return a.condition < b.condition; });
+      write_file(ctx.out_dir / (e.name + ".csv"), atr::results_csv(e, results));
+      write_file(ctx.out_dir / (e.name + "_confusion.csv"), atr::confusion_csv(e, results));
+      if (tested < n_test) return false;
+    }
+  }
+  return true;
+}
+
 // Total chips an experiment renders, for the progress bar.
 double experiment_chips(const atr::SweepExperiment& e) {
   double total = 0.0;
@@ -249,7 +361,7 @@ double experiment_chips(const atr::SweepExperiment& e) {
     total += static_cast<double>(g.resolutions_m.size()) * static_cast<double>(e.classes.size()) *
              (g.train_count + e.test_count);
   }
-  return total;
+  return e.name == "fusion" ? 2.0 * total : total;  // a highlight and a shadow chip per object
 }
 
 bool matplotlib_available(const std::string& python) {
@@ -344,7 +456,9 @@ int run_sweep(const std::vector<std::string>& argv) {
       std::fprintf(stderr, "sonarloop sweep: %s: %s (%zu conditions)\n", e.name.c_str(),
                    e.title.c_str(), e.conditions.size());
       std::vector<atr::ConditionResult> results;
-      if (!run_experiment(e, ctx, results)) {
+      const bool done = e.name == "fusion" ? run_fusion_experiment(e, ctx, results)
+                                           : run_experiment(e, ctx, results);
+      if (!done) {
         stopped = true;
         break;
       }
@@ -393,6 +507,9 @@ experiments (--experiment, repeatable, or 'all'; default fig11):
   open_set    open-set rejection on fig13's seven targets: each left out of training in
               turn (its chips should be called unknown), and none left out; the known
               chips' false-reject rate; 5 and 15 cm (or --resolutions-cm)
+  fusion      highlight + shadow fusion: the same objects (four targets at 25 m ground
+              range) identified from the highlight chip, the shadow chip, and both (each
+              model's distances normalised three ways, atr/fusion.h, and summed); 5-20 cm
   ablation    chip pre-processing before eq. 9 (crop to the chip centre, multilook
               speckle averaging, levels against the seabed), each alone and combined, at
               5 and 15 cm (or --resolutions-cm), the four targets' highlights

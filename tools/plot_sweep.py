@@ -207,6 +207,32 @@ def plot_ablation(rows, out_dir):
     plt.close(fig)
 
 
+def plot_overall(name, rows, out_dir, extra=()):
+    """One panel of the overall error per series against x, then one panel per extra row class
+    (e.g. open_set's unknown_accepted and false_reject): for experiments whose series are
+    variants of one method (fusion, open_set)."""
+    rows = [r for r in rows if r["x_name"] != "aspect_deg"]
+    x_name = rows[0]["x_name"]
+    kinds = ["all"] + [k for k in extra if any(r["class"] == k for r in rows)]
+    fig, axes = plt.subplots(1, len(kinds), figsize=(6.0 * len(kinds), 4.2), squeeze=False)
+    titles = {"all": "misidentification", "unknown_accepted": "held-out type accepted",
+              "false_reject": "known types rejected"}
+    for ax, kind in zip(axes[0], kinds):
+        for series, srows in series_of(rows).items():
+            x, y, lo, hi = curve(srows, kind, x_name)
+            if x:
+                ax.errorbar(x, y, yerr=[lo, hi], marker="o", ms=3, capsize=2, label=series)
+        ax.set_title(f"{name}: {titles.get(kind, kind)}", fontsize=9)
+        ax.set_xlabel(X_LABEL.get(x_name, x_name))
+        ax.set_ylabel("%")
+        ax.set_ylim(0, None)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=6)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out_dir, f"{name}.png"), dpi=DPI)
+    plt.close(fig)
+
+
 def plot_speed_accuracy(tables, out_dir):
     """Render and classification time per chip against accuracy (fig11 across R, p across p)."""
     pts = []  # (label, render_ms, classify_ms, accuracy_pct, kind)
@@ -261,6 +287,10 @@ def main(argv):
             plot_aspect(rows, out_dir)
         elif name == "ablation":
             plot_ablation(rows, out_dir)
+        elif name == "fusion":
+            plot_overall(name, rows, out_dir)
+        elif name == "open_set":
+            plot_overall(name, rows, out_dir, extra=("unknown_accepted", "false_reject"))
         else:
             plot_error_curves(name, rows, out_dir)
         conf = os.path.join(out_dir, f"{name}_confusion.csv")

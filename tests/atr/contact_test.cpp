@@ -91,6 +91,5 @@ TEST_CASE("contact: open-set fields only for a model with rejection") {
   CHECK(j.find("\"unknown\":true,\"open_set_score\":1.25") != std::string::npos);
   c.open_set_score = 0.5;
   c.unknown = false;
-  CHECK(atr::contact_json(c).find("\"unknown\":false,\"open_set_score\":0.5") !=
-        std::string::npos);
+  CHECK(atr::contact_json(c).find("\"unknown\":false,\"open_set_score\":0.5") != std::string::npos);
 }

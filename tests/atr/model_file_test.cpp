@@ -140,10 +140,11 @@ TEST_CASE("model file: the byte layout is the documented one") {
   CHECK(b[68] == 1);                  // cuboid is mine-like
   CHECK(le32(b, 70) == 1);            // one subspace
   CHECK(le32(b, 74) == 0x7F800000u);  // reject distance +infinity: no open-set rejection
+  CHECK(le32(b, 78) == 0);            // typical distance 0: not calibrated
   // size: header + pre-processing + per class (name record + subspaces) + crc
   std::size_t expect = 36 + 24 + 4;
   for (const auto& c : m.classes) {
-    expect += 2 + c.name.size() + 2 + 4 + 4;
+    expect += 2 + c.name.size() + 2 + 4 + 8;
     for (const auto& s : c.subspaces) {
       expect += 16 + 8 + 8 * s.rank() + 4 * 48 * (1 + s.rank());
     }
@@ -221,7 +222,7 @@ TEST_CASE("model file: inconsistent contents are rejected even with a valid chec
   CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("exceeds p = 2"));
   // a NaN in the first mean image (the first class: name "cuboid", 1 subspace, rank 5)
   b = good;
-  const std::size_t mean_at = 36 + 24 + 2 + 6 + 2 + 4 + 4 + 16 + 8 + 8 * 5;
+  const std::size_t mean_at = 36 + 24 + 2 + 6 + 2 + 4 + 8 + 16 + 8 + 8 * 5;
   put_le32(b, mean_at, 0x7FC00000u);
   fix_crc(b);
   CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("non-finite"));
@@ -269,6 +270,9 @@ TEST_CASE("model file: a pre-processing model round-trips; version 1 reads as no
   CHECK(back.preprocess.threshold_db == 4.5);
   CHECK(back.classes[0].subspaces[0].mean.size() == 12);
   CHECK(back.classes[0].reject_distance == m.classes[0].reject_distance);
+  CHECK(back.classes[0].typical_distance == m.classes[0].typical_distance);
+  CHECK(m.classes[0].typical_distance > 0.0f);
+  CHECK(m.classes[0].typical_distance <= m.classes[0].reject_distance);
   CHECK(encode_model(back) == encode_model(m));
 
   // a version 1 file: the version 2 bytes without the pre-processing record and without the
@@ -281,7 +285,7 @@ TEST_CASE("model file: a pre-processing model round-trips; version 1 reads as no
     const std::size_t head = 2 + c.name.size() + 2 + 4;  // up to the subspace count
     v1.insert(v1.end(), v2.begin() + static_cast<long>(at),
               v2.begin() + static_cast<long>(at + head));
-    at += head + 4;  // skip the reject distance
+    at += head + 8;  // skip the reject and typical distances
     std::size_t body = 0;
     for (const auto& sub : c.subspaces)
       body += 16 + 8 + 8 * sub.rank() + 4 * plain.feature_count() * (1 + sub.rank());

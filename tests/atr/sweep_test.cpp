@@ -277,5 +277,41 @@ TEST_CASE("open_set: each of the seven held out in turn; scoring and rows", "[sw
   CHECK(rows[10].find(",unknown_accepted,2,1,50.0000,") != std::string::npos);
 }
 
+TEST_CASE("fusion: the same objects in both datasets; one series per input and norm", "[sweep]") {
+  SweepSettings s = settings();
+  s.resolutions_cm = {10};
+  const SweepExperiment e = make_sweep_experiment("fusion", s);
+  REQUIRE(e.conditions.size() == 5);  // highlight, shadow, both x 3 normalisations
+  CHECK(e.conditions[0].fusion == FusionInput::kHighlight);
+  CHECK(e.conditions[1].fusion == FusionInput::kShadow);
+  CHECK(e.conditions[3].series == "both (model_typical)");
+  const auto groups = render_groups(e);
+  REQUIRE(groups.size() == 1);
+  const auto [h, sh] = fusion_specs(e, groups[0], s, true);
+  CHECK(h.kind == render::ChipKind::kHighlight);
+  CHECK(sh.kind == render::ChipKind::kShadow);
+  CHECK(h.seed == s.seed + kTestSeedOffset);
+  // chip i is the same object in both: every drawn parameter agrees
+  for (std::uint64_t i = 0; i < 20; ++i) {
+    const render::ChipParams a = render::chip_params(h, i), b = render::chip_params(sh, i);
+    CHECK(a.type == b.type);
+    CHECK(a.ground_range_m == b.ground_range_m);
+    CHECK(a.target_heading_deg == b.target_heading_deg);
+    CHECK(a.track_heading_deg == b.track_heading_deg);
+    CHECK(a.altitude_m == b.altitude_m);
+    CHECK(a.target_ne_m == b.target_ne_m);
+  }
+}
+
+TEST_CASE("experiments: no series label holds a comma (the CSV has no quoting)", "[sweep]") {
+  const SweepSettings s = settings();
+  for (const std::string& name : sweep_experiment_names()) {
+    for (const auto& c : make_sweep_experiment(name, s).conditions) {
+      INFO(name << ": " << c.series);
+      CHECK(c.series.find(',') == std::string::npos);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sonarloop::atr

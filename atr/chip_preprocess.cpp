@@ -150,6 +150,11 @@ std::string preprocess_label(const ChipPreprocess& p) {
   return s;
 }
 
+double adaptive_crop_fraction(double chip_side_m, double pixel_m) {
+  const double side = std::max(kMinCroppedSide_m, kMinCroppedPixels * pixel_m);
+  return std::min(1.0, side / chip_side_m);
+}
+
 int cropped_size(int size, double crop_fraction) {
   return std::max(1, static_cast<int>(std::lround(crop_fraction * size)));
 }

@@ -59,6 +59,16 @@ struct ChipPreprocess {
 // Throws std::invalid_argument naming the field out of range.
 void validate_preprocess(const ChipPreprocess& p);
 
+// The crop that `sweep --crop auto` applies at pixel size R to a chip of side chip_side_m:
+// keep a side of max(kMinCroppedSide_m, kMinCroppedPixels * R), at most the whole chip. The
+// rule is read off the ablation (docs/sweep.md): on mixed seabeds the best highlight chip is
+// 0.9-1.2 m at 5 cm (the largest target, 1 m, and its rim: less seabed texture to model),
+// 1.5 m at 10-15 cm, 2 m at 20 cm and the whole 3 m from 25 cm, where a tighter chip keeps too
+// few pixels (the target's outline spans only 4-5 of them) to carry the shape.
+inline constexpr double kMinCroppedSide_m = 1.2;
+inline constexpr double kMinCroppedPixels = 10.0;
+double adaptive_crop_fraction(double chip_side_m, double pixel_m);
+
 // A short label, e.g. "crop 0.67 + multilook 3 + three_level 6 dB"; "eq. 9 only" for identity.
 std::string preprocess_label(const ChipPreprocess& p);
 

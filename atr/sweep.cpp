@@ -265,11 +265,19 @@ SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettin
   } else if (name == "ablation") {
     e.title = "Ablation: chip pre-processing before eq. 9 (highlights)";
     e.conditions = ablation_conditions(s);
+    return e;  // its own crops
   } else {
     std::string all;
     for (const auto& n : sweep_experiment_names())
       all += (all.empty() ? "" : ", ") + n;
     throw std::invalid_argument("unknown experiment '" + name + "' (allowed: " + all + ", all)");
+  }
+  if (s.crop_auto && e.kind == render::ChipKind::kHighlight) {
+    for (SweepCondition& c : e.conditions) {
+      // fusion's shadow model shares the condition: it keeps its whole chip (cmd_sweep)
+      c.preprocess.crop_fraction =
+          adaptive_crop_fraction(render::kHighlightChipRange_m, c.resolution_m);
+    }
   }
   return e;
 }

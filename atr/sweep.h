@@ -84,6 +84,9 @@ struct SweepSettings {
   render::RendererKind renderer = render::RendererKind::kProfile;
   // every condition's chip pre-processing (the ablation sets its own); default none, as the paper
   ChipPreprocess preprocess;
+  // highlight experiments crop each resolution's chips by adaptive_crop_fraction (overrides
+  // preprocess.crop_fraction; not the ablation, not shadow chips)
+  bool crop_auto = false;
   double reject_quantile = 0.95;  // open_set's calibration quantile
 };
 

@@ -54,9 +54,17 @@ render::RendererKind renderer_option(const Args& args) {
   return *kind;
 }
 
-atr::ChipPreprocess preprocess_options(const Args& args) {
+atr::ChipPreprocess preprocess_options(const Args& args, bool* crop_auto) {
   atr::ChipPreprocess p;
-  p.crop_fraction = args.get_double("--crop", 0.05, 1.0).value_or(1.0);
+  if (args.get("--crop") == "auto") {
+    if (!crop_auto) {
+      throw UsageError(
+          "--crop auto needs the pixel size, which only sweep knows; give a fraction here");
+    }
+    *crop_auto = true;
+  } else {
+    p.crop_fraction = args.get_double("--crop", 0.05, 1.0).value_or(1.0);
+  }
   p.multilook_px = static_cast<int>(args.get_int("--multilook", 1, 63).value_or(1));
   if (p.multilook_px % 2 == 0)
     throw UsageError("--multilook: the window must be odd (1, 3, 5 ...)");

@@ -25,7 +25,9 @@ render::RendererKind renderer_option(const Args& args);
 
 // The chip pre-processing options of train and sweep (atr/chip_preprocess.h): --crop F,
 // --multilook K, --levels db|above_seabed|below_seabed|three_level, --threshold-db T. The
-// command must declare them. Throws UsageError for a value out of range.
-atr::ChipPreprocess preprocess_options(const Args& args);
+// command must declare them. Throws UsageError for a value out of range. --crop auto (the crop
+// of atr::adaptive_crop_fraction, per resolution) sets *crop_auto, and is an error when
+// crop_auto is null.
+atr::ChipPreprocess preprocess_options(const Args& args, bool* crop_auto = nullptr);
 
 }  // namespace sonarloop::tools

@@ -286,6 +286,7 @@ bool run_fusion_experiment(const atr::SweepExperiment& e, RunContext& ctx,
       opt.preprocess = c0.preprocess;
       const auto t0 = Clock::now();
       atr::Classifier ch(atr::train_model(atr::training_set(hl, e, c0), opt));
+      opt.preprocess.crop_fraction = ctx.settings.preprocess.crop_fraction;  // not crop auto
       atr::Classifier cs(atr::train_model(atr::training_set(sh, e, c0), opt));
       atr::check_same_classes(ch.model(), cs.model());
       const double train_s = seconds_since(t0);
@@ -416,7 +417,7 @@ int run_sweep(const std::vector<std::string>& argv) {
   if (const auto n = args.get("--non-mine")) s.non_mine = parse_non_mine(*n);
   s.seabeds = parse_seabeds(args.get_or("--seabed", kDefaultSeabeds));
   s.renderer = renderer_option(args);
-  s.preprocess = preprocess_options(args);
+  s.preprocess = preprocess_options(args, &s.crop_auto);
   s.reject_quantile = args.get_double("--reject-quantile", 0.01, 0.9999).value_or(0.95);
   const std::string sonar_arg = args.get_or("--sonar", std::string(config::kDefaultSonarPreset));
   const std::string ext = fs::path(sonar_arg).extension().string();
@@ -546,7 +547,8 @@ options:
   --renderer R         profile (default: heightfield profile renderer) or raytrace (Embree)
   --crop F, --multilook K, --levels L, --threshold-db T
                        chip pre-processing before eq. 9 for every experiment but ablation,
-                       as `sonarloop train` (default none, as the paper)
+                       as `sonarloop train` (default none, as the paper); --crop auto crops
+                       highlight chips per resolution to max(1.2 m, 10 pixels) a side
   --reject-quantile Q  open_set's calibration quantile (default 0.95), as `sonarloop train`
 
 Ctrl-C stops after the chip in progress; the CSV files keep every condition scored so far.
@@ -557,7 +559,7 @@ examples:
   sonarloop sweep --experiment fig11 --resolutions-cm 5,20 --train-count 40 --test-count 50
   sonarloop sweep --experiment all --test-count 1000 --out /tmp/sweep_big
   sonarloop sweep --experiment ablation --test-count 1000 --out /tmp/ablation
-  sonarloop sweep --experiment fig13 --crop 0.4 --out /tmp/fig13_crop
+  sonarloop sweep --experiment fig13 --crop auto --out /tmp/fig13_crop
 )",
     run_sweep, 65};
 SONARLOOP_REGISTER_COMMAND(kSweepCommand);

@@ -110,5 +110,14 @@ TEST_CASE("identity, labels and validation", "[preprocess]") {
   CHECK_NOTHROW(validate_preprocess(ChipPreprocess{0.5, 5, ChipLevels::kThreeLevel, 3.0}));
 }
 
+TEST_CASE("adaptive crop: max(1.2 m, 10 pixels) a side, at most the whole chip", "[preprocess]") {
+  CHECK(adaptive_crop_fraction(3.0, 0.05) == Approx(0.4));  // 1.2 m
+  CHECK(adaptive_crop_fraction(3.0, 0.10) == Approx(0.4));  // 1.2 m = 12 pixels
+  CHECK(adaptive_crop_fraction(3.0, 0.15) == Approx(0.5));  // 10 pixels = 1.5 m
+  CHECK(adaptive_crop_fraction(3.0, 0.20) == Approx(2.0 / 3.0));
+  CHECK(adaptive_crop_fraction(3.0, 0.30) == Approx(1.0));  // the whole chip
+  CHECK(adaptive_crop_fraction(3.0, 0.50) == Approx(1.0));
+}
+
 }  // namespace
 }  // namespace sonarloop::atr

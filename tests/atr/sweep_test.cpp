@@ -313,5 +313,18 @@ TEST_CASE("experiments: no series label holds a comma (the CSV has no quoting)",
   }
 }
 
+TEST_CASE("crop auto: per resolution on highlight experiments only", "[sweep]") {
+  SweepSettings s = settings();
+  s.crop_auto = true;
+  s.resolutions_cm = {5, 20};
+  const SweepExperiment f11 = make_sweep_experiment("fig11", s);
+  CHECK(f11.conditions[0].preprocess.crop_fraction == Approx(0.4));
+  CHECK(f11.conditions[1].preprocess.crop_fraction == Approx(2.0 / 3.0));
+  for (const auto& c : make_sweep_experiment("fig15", s).conditions)
+    CHECK(c.preprocess.crop_fraction == 1.0);  // shadow chips keep their length
+  const SweepExperiment ab = make_sweep_experiment("ablation", s);
+  CHECK(ab.conditions[0].preprocess.is_identity());  // the ablation sets its own
+}
+
 }  // namespace
 }  // namespace sonarloop::atr

@@ -2,6 +2,7 @@
 """Charts of a `sonarloop sweep` output folder (Pailhas, Petillot & Capus 2010, Figs. 11/13/15).
 
 usage: python3 tools/plot_sweep.py OUT_DIR
+       python3 tools/plot_sweep.py --compare OUT.png LABEL=DIR [LABEL=DIR ...]
 
 Reads OUT_DIR/NAME.csv and NAME_confusion.csv as `sonarloop sweep` writes them and draws, next
 to them:
@@ -12,6 +13,10 @@ to them:
   NAME_confusion.png   row-normalised confusion matrices, one per condition
   speed_accuracy.png   render and classification time per chip against accuracy, across
                        resolution (fig11) and p
+  ablation.png, fusion.png, open_set.png  the variants side by side
+--compare draws, for every experiment found in all the folders, the overall misidentification
+(and fig13's mine / non-mine error) of each folder on one panel: e.g. a run against the same
+run with `--crop auto`.
 Only the Python standard library and matplotlib (Agg backend) are used.
 """
 import csv
@@ -177,10 +182,15 @@ def plot_ablation(rows, out_dir):
     xs = sorted({float(r["x"]) for r in rows})
     variants = list(series_of(rows).keys())
     kinds = ["all"] + [c for c in classes_of(rows) if c.startswith("seabed_")]
-    fig, axes = plt.subplots(1, len(xs), figsize=(6.5 * len(xs), 0.45 * len(variants) + 1.8),
+    ncols = min(3, len(xs))
+    nrows = (len(xs) + ncols - 1) // ncols
+    fig, axes = plt.subplots(nrows, ncols,
+                             figsize=(6.5 * ncols, (0.45 * len(variants) + 1.8) * nrows),
                              squeeze=False, sharey=True)
+    for ax in axes.flat[len(xs):]:
+        ax.set_visible(False)
     height = 0.8 / len(kinds)
-    for ax, x in zip(axes[0], xs):
+    for ax, x in zip(axes.flat, xs):
         for k, kind in enumerate(kinds):
             ys, vals, errs = [], [], [[], []]
             for i, v in enumerate(variants):
@@ -271,7 +281,54 @@ def plot_speed_accuracy(tables, out_dir):
     plt.close(fig)
 
 
+def compare(out_png, specs):
+    """Overall error of the same experiments in several output folders, one panel each."""
+    runs = []
+    for spec in specs:
+        label, sep, folder = spec.partition("=")
+        if not sep or not os.path.isdir(folder):
+            print(f"plot_sweep: '{spec}' is not LABEL=DIR with DIR a folder", file=sys.stderr)
+            return 2
+        runs.append((label, folder))
+    names = None
+    for _, folder in runs:
+        found = {f[:-4] for f in os.listdir(folder)
+                 if f.endswith(".csv") and not f.endswith("_confusion.csv")}
+        names = found if names is None else names & found
+    panels = []
+    for name in sorted(names or []):
+        panels.append((name, "all"))
+        if name == "fig13":
+            panels.append((name, "mine_vs_non_mine"))
+    if not panels:
+        print("plot_sweep: the folders share no experiment", file=sys.stderr)
+        return 1
+    fig, axes = plt.subplots(1, len(panels), figsize=(6.0 * len(panels), 4.2), squeeze=False)
+    for ax, (name, cls) in zip(axes[0], panels):
+        for label, folder in runs:
+            rows = read_rows(os.path.join(folder, f"{name}.csv"))
+            x_name = rows[0]["x_name"]
+            for series, srows in series_of(rows).items():
+                x, y, lo, hi = curve(srows, cls, x_name)
+                tag = label if not series else f"{label}: {series}"
+                ax.errorbar(x, y, yerr=[lo, hi], marker="o", ms=3, capsize=2, label=tag)
+        what = "mine / non-mine error" if cls == "mine_vs_non_mine" else "misidentification"
+        ax.set_title(f"{name}: {what}", fontsize=9)
+        ax.set_xlabel(X_LABEL.get(x_name, x_name))
+        ax.set_ylabel("%")
+        ax.set_ylim(0, None)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out_png, dpi=DPI)
+    plt.close(fig)
+    print(f"chart written to {out_png}")
+    return 0
+
+
 def main(argv):
+    if len(argv) >= 4 and argv[1] == "--compare":
+        return compare(argv[2], argv[3:])
     if len(argv) != 2 or argv[1] in ("-h", "--help"):
         print(__doc__)
         return 2

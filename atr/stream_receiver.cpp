@@ -111,6 +111,64 @@ DatagramOutcome StreamReceiver::on_ping(std::span<const std::uint8_t> datagram) 
     next_ = number;
     max_seen_ = number;
   }
+  if (n_held_ > 0) {
+    const auto dc = static_cast<std::int32_t>(number - held_[0].number);
+    const bool fits = dc != 0 && dc >= -options_.reorder_window && dc <= options_.reorder_window;
+    for (int i = 0; i < n_held_; ++i) {
+      if (held_[static_cast<std::size_t>(i)].number == number) {
+        ++stats_.duplicates;
+        return DatagramOutcome::kDuplicate;
+      }
+    }
+    if (fits && n_held_ < kJumpConfirmations) {
+      hold(number);
+      return DatagramOutcome::kPing;
+    }
+    if (fits) {
+      // confirmed: the held pings in arrival order, then this one
+      std::swap(scratch_, stash_);
+      const int n = n_held_;
+      n_held_ = 0;
+      for (int i = 0; i < n; ++i) {
+        Slot& h = held_[static_cast<std::size_t>(i)];
+        std::swap(scratch_, h.ping);
+        place(h.number, true);
+      }
+      std::swap(scratch_, stash_);
+      return place(number, true);
+    }
+  }
+  return place(number, false);
+}
+
+bool StreamReceiver::is_jump(std::uint32_t number) const {
+  const auto d = static_cast<std::int64_t>(static_cast<std::int32_t>(number - next_));
+  if (d >= options_.reorder_window) return true;  // gives up numbers, or restarts
+  if (d >= 0 || -d <= options_.reorder_window) return false;
+  // far behind: a restart unless it is a number this sequence has seen (duplicate or late)
+  const HistoryEntry& h = history_[number % history_.size()];
+  return h.seen == Seen::kNone || h.number != number;
+}
+
+void StreamReceiver::hold(std::uint32_t number) {
+  Slot& h = held_[static_cast<std::size_t>(n_held_++)];
+  h.used = true;
+  h.number = number;
+  std::swap(h.ping, scratch_);
+}
+
+void StreamReceiver::drop_held() {
+  stats_.unconfirmed += static_cast<std::uint64_t>(n_held_);
+  n_held_ = 0;
+}
+
+DatagramOutcome StreamReceiver::place(std::uint32_t number, bool confirmed) {
+  if (!confirmed && is_jump(number)) {
+    // a jump waits for confirmation (see the header); one that did not come is dropped
+    drop_held();
+    hold(number);
+    return DatagramOutcome::kPing;
+  }
   // signed distance from the next expected number (ping numbers wrap modulo 2^32)
   const auto d = static_cast<std::int64_t>(static_cast<std::int32_t>(number - next_));
   if (d > static_cast<std::int64_t>(options_.max_gap)) return restart(number);
@@ -137,6 +195,8 @@ DatagramOutcome StreamReceiver::on_ping(std::span<const std::uint8_t> datagram) 
     ++stats_.duplicates;
     return DatagramOutcome::kDuplicate;
   }
+  // the stream goes on where it was: a held jump was junk
+  if (!confirmed) drop_held();
   // beyond the window: give up the oldest numbers until it fits
   while (static_cast<std::int32_t>(number - next_) >= options_.reorder_window)
     release_next();
@@ -192,6 +252,8 @@ void StreamReceiver::deliver_ready() {
 }
 
 void StreamReceiver::flush() {
+  // an unconfirmed jump is dropped (see the header)
+  drop_held();
   // give up numbers until the buffer is empty (only gaps between buffered pings count as lost)
   while (buffered_ > 0)
     release_next();

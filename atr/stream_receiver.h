@@ -23,9 +23,18 @@
 //   - a new sequence starts (the sender restarted) on a jump forward of more than max_gap
 //     numbers, or back by more than W to a number never seen: the buffer is flushed,
 //     restarts + 1, and the jump is not counted as lost.
+// Jumps are confirmed first. A ping that would move the sequence (beyond the window, or a
+// restart) is held, not acted on, until kJumpConfirmations more pings arrive within W numbers
+// of it (a real stream goes on from where it jumped to); then all of them are placed as above.
+// A ping in the current window, or a ping that does not fit the held one, drops what is held
+// (counted as unconfirmed); so does flush(). XTF has no checksum: junk that decodes as a ping
+// with a random high PingNumber would otherwise give up every ping up to it as lost and then
+// count the real stream, now behind, as late (issue 11: 0 of 4 targets found after a junk
+// burst). The cost: a real jump of W or more reaches the sink two pings later, and a jump in
+// the last two pings before a flush is dropped.
 // The counts are exact while every event stays within `history` numbers of the newest ping:
-//   received pings = pings + duplicates + late (+ before_header), and after flush()
-//   pings + lost + late = the numbers spanned, last - first + 1, per sequence.
+//   received pings = pings + duplicates + late + unconfirmed (+ before_header), and after
+//   flush() pings + lost + late = the numbers spanned, last - first + 1, per sequence.
 // reordered counts pings handed over that arrived after a higher-numbered one.
 //
 // Malformed datagrams (classify_datagram kInvalid, a header or ping that does not decode, a
@@ -36,6 +45,7 @@
 // Allocation: none per datagram once warmed up. The W slots hold decoded pings whose sample
 // buffers are reused (a ping is decoded into a scratch ping and swapped into its slot); the
 // history is a fixed ring. Exceptions (malformed input only) are the error path.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -52,6 +62,8 @@ inline constexpr int kDefaultSequenceHistory = 4096;
 // A jump forward of more ping numbers than this starts a new sequence (about 11 min at 15
 // pings/s).
 inline constexpr std::uint32_t kDefaultMaxPingGap = 10000;
+// Pings that must follow a jump, each within the reorder window of it, before it is acted on.
+inline constexpr int kJumpConfirmations = 2;
 
 struct ReceiverOptions {
   int reorder_window = kDefaultReorderWindow;  // W >= 1 slots
@@ -73,6 +85,7 @@ struct ReceiverStats {
   std::uint64_t before_header = 0;   // pings before any file header; dropped
   std::uint64_t other_packets = 0;   // valid XTF packets that are not sonar pings; ignored
   std::uint64_t restarts = 0;        // new sequences (jumps beyond max_gap)
+  std::uint64_t unconfirmed = 0;     // jumps no following ping confirmed (junk); dropped
 };
 
 // What feed() made of a datagram.
@@ -121,6 +134,11 @@ class StreamReceiver {
 
   DatagramOutcome on_header(std::span<const std::uint8_t> datagram);
   DatagramOutcome on_ping(std::span<const std::uint8_t> datagram);
+  // scratch_ holds the decoded ping in place() .. accept(). confirmed: a jump is acted on.
+  DatagramOutcome place(std::uint32_t number, bool confirmed);
+  bool is_jump(std::uint32_t number) const;
+  void hold(std::uint32_t number);                // scratch_ -> the next held slot
+  void drop_held();                               // counted as unconfirmed
   DatagramOutcome restart(std::uint32_t number);  // scratch_ holds the decoded ping
   void accept(std::uint32_t number);              // scratch_ holds the decoded ping
   void release_next();  // hands over or gives up number next_, then next_ + 1
@@ -136,6 +154,9 @@ class StreamReceiver {
   xtf::XtfFileHeader header_;
   std::vector<std::uint8_t> header_bytes_;  // the current header as received
   xtf::XtfPing scratch_;
+  xtf::XtfPing stash_;                         // the confirming ping while the held ones are placed
+  std::array<Slot, kJumpConfirmations> held_;  // a jump awaiting confirmation, in arrival order
+  int n_held_ = 0;
   std::vector<Slot> slots_;  // (W) indexed by number mod W
   std::vector<HistoryEntry> history_;
   int buffered_ = 0;

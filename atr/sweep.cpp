@@ -155,8 +155,8 @@ LabelledChip labelled_chip(const render::ChipImage& c) {
 }
 
 std::vector<std::string> sweep_experiment_names() {
-  return {"fig11",      "fig13", "fig15",    "aspect", "snr",     "altitude",
-          "train_size", "p",     "open_set", "fusion", "ablation"};
+  return {"fig11",  "fig13",      "fig15", "aspect",   "snr",    "altitude",
+          "burial", "train_size", "p",     "open_set", "fusion", "ablation"};
 }
 
 SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettings& s) {
@@ -223,6 +223,15 @@ SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettin
           c.p = static_cast<int>(v);
           return c.p < s.train_count;  // rank <= k - 1
         });
+  } else if (name == "burial") {
+    e.title = "Stability: target burial (tested buried, trained proud)";
+    e.classes = fig13_classes(s);
+    e.mine_groups = true;
+    e.conditions =
+        stability_curve(s, "burial_pct", {0, 10, 20, 30, 40, 50}, [](SweepCondition& c, double v) {
+          c.burial_fraction = v / 100.0;
+          return true;
+        });
   } else if (name == "open_set") {
     e.title = "Open-set rejection: each of the seven targets left out of training in turn";
     e.classes = fig13_classes(s);
@@ -288,11 +297,17 @@ std::vector<RenderGroup> render_groups(const SweepExperiment& e) {
     const SweepCondition& c = e.conditions[i];
     auto g = std::find_if(groups.begin(), groups.end(), [&](const RenderGroup& x) {
       return x.altitude_min_m == c.altitude_min_m && x.altitude_max_m == c.altitude_max_m &&
-             x.source_level_offset_db == c.source_level_offset_db;
+             x.source_level_offset_db == c.source_level_offset_db &&
+             x.burial_fraction == c.burial_fraction;
     });
     if (g == groups.end()) {
-      groups.push_back(
-          RenderGroup{c.altitude_min_m, c.altitude_max_m, c.source_level_offset_db, {}, {}, 0});
+      groups.push_back(RenderGroup{c.altitude_min_m,
+                                   c.altitude_max_m,
+                                   c.source_level_offset_db,
+                                   c.burial_fraction,
+                                   {},
+                                   {},
+                                   0});
       g = groups.end() - 1;
     }
     auto r = std::find(g->resolutions_m.begin(), g->resolutions_m.end(), c.resolution_m);
@@ -320,6 +335,7 @@ render::ChipDatasetSpec render_group_spec(const SweepExperiment& e, const Render
   spec.altitude_max_m = g.altitude_max_m;
   spec.sonar = s.sonar;
   spec.sonar.source_level_db += g.source_level_offset_db;
+  spec.burial_fraction = test ? g.burial_fraction : 0.0;
   spec.renderer = s.renderer;
   return spec;
 }

@@ -30,6 +30,8 @@
 //   open_set    open-set rejection on the seven targets of fig13: each type in turn is left out
 //               of training, and its test chips should be rejected as unknown; the known
 //               types' false-reject rate (5 and 15 cm).
+//   burial      stability: test targets buried by 0-50 % of their height (trained on proud
+//               ones), fig13's seven with the mine / non-mine decision, at 5 cm.
 //   fusion      highlight + shadow fusion (atr/fusion.h): the same objects (the four targets at
 //               25 m ground range) identified from their highlight chip, their shadow chip, and
 //               both (5-20 cm).
@@ -103,6 +105,7 @@ struct SweepCondition {
   double altitude_min_m = 2.0;
   double altitude_max_m = 10.0;
   double source_level_offset_db = 0.0;
+  double burial_fraction = 0.0;  // of the TEST targets' height; training targets lie proud
   // training
   int train_count = 80;  // per class
   int p = kDefaultSubspaceDim;
@@ -132,19 +135,21 @@ std::vector<std::string> sweep_experiment_names();
 // Throws std::invalid_argument naming the allowed experiments for an unknown name.
 SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettings& settings);
 
-// Conditions that share rendered chips: same altitude range and source level (one renderer,
-// all their resolutions), then the same resolution.
+// Conditions that share rendered chips: same altitude range, source level and burial (one
+// renderer, all their resolutions), then the same resolution.
 struct RenderGroup {
   double altitude_min_m = 0.0;
   double altitude_max_m = 0.0;
   double source_level_offset_db = 0.0;
+  double burial_fraction = 0.0;
   std::vector<double> resolutions_m;              // distinct, in order of first use
   std::vector<std::vector<std::size_t>> members;  // (resolutions) condition indices
   int train_count = 0;                            // the largest of its conditions, per class
 };
 std::vector<RenderGroup> render_groups(const SweepExperiment& e);
 
-// The dataset of a render group: training (test = false, seed S) or test (seed S + 1).
+// The dataset of a render group: training (test = false, seed S; targets never buried) or test
+// (seed S + 1).
 render::ChipDatasetSpec render_group_spec(const SweepExperiment& e, const RenderGroup& g,
                                           const SweepSettings& settings, bool test);
 

@@ -503,6 +503,8 @@ experiments (--experiment, repeatable, or 'all'; default fig11):
               aspect-sector subspaces, trained on 2 x --train-count chips per target
   snr         source level 210 down to 130 dB (the noise stays: SNR falls dB for dB), 5 cm
   altitude    fixed sonar altitudes 2-20 m (grazing angle), 5 cm
+  burial      test targets buried by 0-50 % of their height (trained proud), fig13's
+              seven with the mine / non-mine decision, 5 cm
   train_size  5-320 training chips per target, 5 cm
   p           subspace dimension 1-79 (below --train-count), 5 cm
   open_set    open-set rejection on fig13's seven targets: each left out of training in
@@ -514,7 +516,7 @@ experiments (--experiment, repeatable, or 'all'; default fig11):
   ablation    chip pre-processing before eq. 9 (crop to the chip centre, multilook
               speckle averaging, levels against the seabed), each alone and combined, at
               5 and 15 cm (or --resolutions-cm), the four targets' highlights
-The stability studies (aspect, snr, altitude, train_size, p) run at 5 cm, or at each of
+The stability studies (aspect, snr, altitude, burial, train_size, p) run at 5 cm, or at each of
 --resolutions-cm (one curve each); fig11/13/15 take --resolutions-cm as their x axis.
 
 Writes to --out DIR (rewritten after every resolution, so an interrupted run keeps its results):

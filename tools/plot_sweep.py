@@ -37,6 +37,7 @@ X_LABEL = {
     "source_level_db": "source level (dB re 1 uPa at 1 m)",
     "altitude_m": "sonar altitude (m)",
     "train_per_class": "training chips per target",
+    "burial_pct": "burial (% of the target's height)",
     "p": "subspace dimension p",
     "aspect_sectors": "aspect sectors",
 }

@@ -198,6 +198,9 @@ ChipRenderer::ChipRenderer(ChipDatasetSpec spec) : spec_(std::move(spec)) {
   if (!(spec_.altitude_min_m > 0.0 && spec_.altitude_min_m <= spec_.altitude_max_m)) {
     throw std::invalid_argument("dataset: need 0 < altitude_min_m <= altitude_max_m");
   }
+  if (!(spec_.burial_fraction >= 0.0 && spec_.burial_fraction <= 0.9)) {
+    throw std::invalid_argument("dataset: burial fraction must be within 0 .. 0.9");
+  }
   if (!(spec_.range_min_m > 0.0 && spec_.range_min_m <= spec_.range_max_m)) {
     throw std::invalid_argument("dataset: need 0 < range_min_m <= range_max_m");
   }
@@ -290,11 +293,13 @@ ChipImage ChipRenderer::render(std::uint64_t index, int resolution) const {
   target.type = p.type;
   target.position_m = p.target_ne_m;
   target.heading_deg = p.target_heading_deg;
+  target.burial_m = spec_.burial_fraction * targets::target_type_info(p.type).size_m.z();
   desc.targets = {target};
   const scene::Scene sc(desc, kind.seabed);
   const scene::PlacedTarget& placed = sc.targets()[0];
   const Vec3 centre = placed.bounds_W.center();
-  const double sonar_z = placed.X_WT.translation().z() - p.altitude_m;
+  // the base plane lies burial_m below the seabed (z down): the altitude is above the seabed
+  const double sonar_z = placed.X_WT.translation().z() - target.burial_m - p.altitude_m;
 
   // the track: closest approach to the target's centre at along-track offset 0
   const Vec2 along = heading_vector(p.track_heading_deg * kDegToRad);

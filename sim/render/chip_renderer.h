@@ -125,6 +125,9 @@ struct ChipDatasetSpec {
   double altitude_max_m = 10.0;
   double range_min_m = 5.0;  // ground range from the track to the target's centre (highlight)
   double range_max_m = 50.0;
+  // Target burial: the base sunk below the local seabed by this fraction of the target's height
+  // (scene::TargetDesc::burial_m), 0 .. 0.9; the altitude stays measured from the seabed.
+  double burial_fraction = 0.0;
   // The sonar (e.g. the pailhas_strip preset). Per resolution R the renderer sets: along_track
   // kStrip, bin_size_m = along_track_resolution_m = R, the pulse whose resolution is one bin
   // (pulse_length_s = chirp_bandwidth_hz = 0), and max_range_m large enough for every chip.

@@ -332,9 +332,75 @@ TEST_CASE("stream receiver: random mutations never crash it, and every datagram 
   CHECK(s.datagrams == 4001);
   CHECK(s.datagrams == s.file_headers + s.malformed + accepted + s.duplicates + s.late +
                            s.before_header + s.other_packets);
+  CHECK(accepted == s.pings + s.unconfirmed);
   CHECK(s.malformed > 100);
   CHECK(accepted > 1000);
   CHECK(s.pings == got.numbers.size());
+}
+
+namespace {
+
+// Feeds pings first .. last - 1 in order, noting their numbers in `sent`.
+void feed_run(atr::StreamReceiver& rx, const xtf::XtfFileHeader& h, std::uint32_t first,
+              std::uint32_t last, std::vector<std::uint32_t>& sent) {
+  for (std::uint32_t k = first; k < last; ++k) {
+    CHECK(rx.feed(ping_bytes(h, k)) == atr::DatagramOutcome::kPing);
+    sent.push_back(k);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("stream receiver: a burst of junk with high ping numbers does not derail the stream") {
+  // issue 11: after such a burst the clean stream was counted late (the junk had moved the
+  // expected number far ahead) and onboard found 0 of 4 targets
+  const xtf::XtfFileHeader h = testing::make_stream_header();
+  Collected got;
+  atr::StreamReceiver rx = make_receiver(got);
+  rx.feed(xtf::encode_file_header(h));
+  std::vector<std::uint32_t> clean;
+  feed_run(rx, h, kFirstNumber, kFirstNumber + 100, clean);
+  // 60 well-formed pings with random numbers ahead: within max_gap, beyond it, and behind
+  Rng rng(11, RngStream::kTraining, 79);
+  const std::uint32_t next = kFirstNumber + 100;
+  for (int j = 0; j < 60; ++j) {
+    const std::uint32_t number =
+        j % 3 == 0 ? next + kWindow + static_cast<std::uint32_t>(rng.below(atr::kDefaultMaxPingGap))
+        : j % 3 == 1
+            ? next + atr::kDefaultMaxPingGap + 1 + static_cast<std::uint32_t>(rng.below(1u << 30))
+            : static_cast<std::uint32_t>(rng.below(kFirstNumber - kWindow));
+    CHECK(rx.feed(ping_bytes(h, number)) == atr::DatagramOutcome::kPing);  // held
+  }
+  feed_run(rx, h, next, next + 300, clean);
+  rx.flush();
+  const auto& s = rx.stats();
+  CHECK(got.numbers == clean);
+  CHECK(s.pings == 400);
+  CHECK(s.late == 0);
+  CHECK(s.lost == 0);
+  CHECK(s.restarts == 0);
+  CHECK(s.unconfirmed == 60);
+  CHECK(got.samples_ok);
+}
+
+TEST_CASE("stream receiver: a real jump is followed once the next pings confirm it") {
+  const xtf::XtfFileHeader h = testing::make_stream_header();
+  Collected got;
+  atr::StreamReceiver rx = make_receiver(got);
+  rx.feed(xtf::encode_file_header(h));
+  std::vector<std::uint32_t> want;
+  feed_run(rx, h, 0, 50, want);
+  // 50 pings lost in a row (more than the window), then the stream goes on
+  feed_run(rx, h, 100, 150, want);
+  // held, not confirmed before the flush: dropped
+  rx.feed(ping_bytes(h, 500));
+  rx.feed(ping_bytes(h, 501));
+  rx.flush();
+  const auto& s = rx.stats();
+  CHECK(got.numbers == want);
+  CHECK(s.lost == 50);
+  CHECK(s.unconfirmed == 2);
+  CHECK(s.late == 0);
 }
 
 TEST_CASE("stream receiver: bad options are refused") {

@@ -326,5 +326,19 @@ TEST_CASE("crop auto: per resolution on highlight experiments only", "[sweep]") 
   CHECK(ab.conditions[0].preprocess.is_identity());  // the ablation sets its own
 }
 
+TEST_CASE("burial: one render group per burial; training chips always proud", "[sweep]") {
+  SweepSettings s = settings();
+  const SweepExperiment e = make_sweep_experiment("burial", s);
+  REQUIRE(e.conditions.size() == 6);
+  CHECK(e.classes.size() == 7);
+  CHECK(e.mine_groups);
+  CHECK(e.conditions[5].x_name == "burial_pct");
+  CHECK(e.conditions[5].burial_fraction == Approx(0.5));
+  const auto groups = render_groups(e);
+  REQUIRE(groups.size() == 6);
+  CHECK(render_group_spec(e, groups[5], s, true).burial_fraction == Approx(0.5));
+  CHECK(render_group_spec(e, groups[5], s, false).burial_fraction == 0.0);
+}
+
 }  // namespace
 }  // namespace sonarloop::atr

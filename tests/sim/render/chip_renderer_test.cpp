@@ -355,6 +355,34 @@ TEST_CASE("shadow chips: the target near the chip's start, its whole shadow behi
   CHECK(whole >= 22);
 }
 
+TEST_CASE("chips: a half-buried target casts about half the shadow of the same target on top") {
+  // shadow length ~ height x range / altitude (flat seabed): sinking the base by half the height
+  // halves the part that casts it; the altitude stays above the seabed
+  ChipDatasetSpec s = spec({"flat"}, {0.1}, ChipKind::kShadow);
+  const auto mean_shadow_bins = [&](double burial) {
+    s.burial_fraction = burial;
+    const ChipRenderer r(s);
+    double sum = 0.0;
+    int n = 0;
+    for (const ChipImage& c : render_all(r, 8, 2)) {
+      for (const ChipRowTruth& t : c.truth) {
+        if (t.shadow_first < 0) continue;
+        sum += t.shadow_last - t.shadow_first + 1;
+        ++n;
+      }
+    }
+    return n ? sum / n : 0.0;
+  };
+  const double on_top = mean_shadow_bins(0.0);
+  const double half = mean_shadow_bins(0.5);
+  INFO("mean shadow " << on_top << " bins on top, " << half << " half buried");
+  REQUIRE(on_top > 10.0);
+  CHECK(half < 0.7 * on_top);
+  CHECK(half > 0.3 * on_top);
+  s.burial_fraction = 0.95;
+  CHECK_THROWS_AS(ChipRenderer(s), std::invalid_argument);
+}
+
 TEST_CASE("render_chips: a stop leaves exactly the first chips, in order; errors propagate") {
   const ChipRenderer r(spec({"flat"}, {0.3}));
   std::vector<ChipJob> jobs;

@@ -78,6 +78,12 @@ std::string contact_json(const Contact& c) {
     w.key("aspect_sector_deg").begin_array();
     w.value(c.aspect_min_deg, kScoreDigits).value(c.aspect_max_deg, kScoreDigits);
     w.end_array();
+    if (c.looks > 1) {
+      w.field("looks", c.looks);
+      w.field("object", c.object);
+      w.field("fused_class", c.fused_class);
+      w.field("fused_mine_like", c.fused_mine_like);
+    }
     if (c.open_set_score) {
       w.field("unknown", c.unknown);
       w.field("open_set_score", *c.open_set_score, kScoreDigits);

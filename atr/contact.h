@@ -30,6 +30,9 @@
 //                    unrelated to a class lie about sqrt(pixels) = 60 away for 60 x 60 chips)
 //   mine_distance, non_mine_distance  the group scores (null for a group without classes)
 //   aspect_sector_deg  the aspect sector of the nearest subspace of the identified class
+//   looks, object, fused_class, fused_mine_like  only when the object was seen before (another
+//                    pass or aspect, atr/look_fusion.h): how many looks, the first look's contact
+//                    id, and the decision from all the looks' distances
 //   unknown, open_set_score  only with a model trained with open-set rejection: the distance
 //                    over the identified class's reject distance, and whether it exceeds 1 (an
 //                    object unlike every trained type; "class" then names the nearest one)
@@ -69,6 +72,11 @@ struct Contact {
   double mine_distance = 0.0;
   double non_mine_distance = 0.0;
   double aspect_min_deg = 0.0, aspect_max_deg = 360.0;
+  // multi-look fusion (atr/look_fusion.h): reported when the object was seen before
+  int looks = 1;
+  std::uint64_t object = 0;  // the contact id of the object's first look
+  std::string fused_class;
+  bool fused_mine_like = false;
   // open-set rejection, when the model has it (TrainOptions::reject_quantile)
   std::optional<double> open_set_score;
   bool unknown = false;

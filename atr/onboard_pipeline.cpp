@@ -33,11 +33,15 @@ OnboardPipeline::OnboardPipeline(std::optional<Model> model, const OnboardOption
   if (!(options.position_window_m > 0.0)) {
     throw std::invalid_argument("position window must be > 0 m");
   }
+  if (!(options.look_radius_m >= 0.0 && std::isfinite(options.look_radius_m))) {
+    throw std::invalid_argument("look radius must be >= 0 m (0: no multi-look fusion)");
+  }
   if (model) {
     const ChipSpec spec = highlight_chip_spec(model->chip_width, model->chip_height);
     classifier_ = std::make_unique<Classifier>(std::move(*model));
     aligned_ = std::make_unique<AlignedClassifier>(*classifier_, options.search);
     cutter_ = std::make_unique<ChipCutter>(spec, aligned_->margin_rows(), aligned_->margin_cols());
+    if (options.look_radius_m > 0.0) looks_ = std::make_unique<LookFusion>(options.look_radius_m);
   }
 }
 
@@ -139,6 +143,7 @@ void OnboardPipeline::report(const Detection& d) {
   c.highlight_db = d.highlight_db;
   ChipCentre centre{d.side, d.along_m, d.slant_m};
   double height = d.height_m;
+  const Classification* classified = nullptr;  // the aligned classifier's, valid in this call
 
   if (!classifier_) {
     c.status = "no_model";
@@ -160,6 +165,7 @@ void OnboardPipeline::report(const Detection& d) {
         ++stats_.classified;
         const Model& m = classifier_->model();
         const Classification& r = a.result;
+        classified = &r;
         const ClassModel& cls = m.classes[static_cast<std::size_t>(r.class_index)];
         c.class_name = cls.name;
         c.mine_like = r.mine_like;
@@ -188,6 +194,14 @@ void OnboardPipeline::report(const Detection& d) {
     stats_.classify_max_s = std::max(stats_.classify_max_s, s);
   }
   locate(d, centre, height, c);
+  if (looks_ && classified) {
+    const Model& m = classifier_->model();
+    const FusedObject& o = looks_->add(c.id, c.north_m, c.east_m, m, *classified);
+    c.looks = o.looks;
+    c.object = o.id;
+    c.fused_class = m.classes[static_cast<std::size_t>(o.class_index)].name;
+    c.fused_mine_like = m.classes[static_cast<std::size_t>(o.class_index)].mine_like;
+  }
   if (sink_) sink_(c);
 }
 

@@ -7,6 +7,7 @@
 //            -> Detector (highlight + shadow, one per object)  atr/detector.h
 //            -> ChipCutter (the dataset's chip convention)     atr/chip_cutter.h
 //            -> AlignedClassifier (eq. 10 at the best shift)   atr/aligned_classifier.h
+//            -> LookFusion (fuse a re-seen object's looks)      atr/look_fusion.h
 //            -> Contact (JSON line)                            atr/contact.h
 //
 // Object position. The classifier's best window refines the object's centre (along track and
@@ -31,6 +32,7 @@
 #include "atr/chip_cutter.h"
 #include "atr/contact.h"
 #include "atr/detector.h"
+#include "atr/look_fusion.h"
 #include "atr/stream_receiver.h"
 #include "atr/subspace_classifier.h"
 #include "atr/waterfall.h"
@@ -43,6 +45,9 @@ struct OnboardOptions {
   DetectorOptions detector;
   AlignmentSearch search;
   double position_window_m = 1.5;  // pings averaged for the position (each side of the object)
+  // multi-look fusion (atr/look_fusion.h): a classified contact within this distance of an
+  // object seen before is fused with it; 0 turns fusion off
+  double look_radius_m = kDefaultLookRadius_m;
 };
 
 struct OnboardStats {
@@ -98,6 +103,7 @@ class OnboardPipeline {
   std::unique_ptr<Classifier> classifier_;
   std::unique_ptr<ChipCutter> cutter_;
   std::unique_ptr<AlignedClassifier> aligned_;
+  std::unique_ptr<LookFusion> looks_;  // null when fusion is off
   OnboardStats stats_;
 };
 

@@ -125,6 +125,7 @@ int run_onboard(const std::vector<std::string>& argv) {
                          {"--search-rows"},
                          {"--search-cols"},
                          {"--stats-json"},
+                         {"--look-radius"},
                          {"--quiet", false}});
   if (!args.positionals().empty()) {
     throw UsageError("unexpected argument '" + args.positionals()[0] + "'");
@@ -155,6 +156,8 @@ int run_onboard(const std::vector<std::string>& argv) {
       static_cast<int>(args.get_int("--search-rows", 0, 100).value_or(options.search.rows));
   options.search.cols =
       static_cast<int>(args.get_int("--search-cols", 0, 100).value_or(options.search.cols));
+  options.look_radius_m =
+      args.get_double("--look-radius", 0.0, 100.0).value_or(options.look_radius_m);
   const auto stats_json = args.get("--stats-json");
 
   std::optional<atr::Model> model = load_model_if(args.get("--model"));
@@ -211,7 +214,8 @@ UDP datagram), or reads a recorded .xtf file, and runs the onboard chain on it:
              resolution, one ping per row resampled along track with the navigation and
              pitch), classified by the PCA model of `sonarloop train` at the best alignment
   report     one JSON line per contact: time, ping, latitude/longitude of the object, class,
-             mine / non-mine, the distance to every class
+             mine / non-mine, the distance to every class, and for an object seen before the
+             decision fused over its looks (atr/look_fusion.h)
 Contacts go to stdout (or --contacts FILE) as they are found; statistics go to stderr at the
 end. Without --model the objects are reported unclassified. With --listen, Ctrl-C stops
 cleanly (objects still open are reported).
@@ -227,6 +231,9 @@ options:
   --search-rows N        alignment search: chip windows tried up to N pixels along track
                          either side of the detector's centre (default 6)
   --search-cols N        the same in range (default 10)
+  --look-radius M        multi-look fusion: a classified object within M metres of one seen
+                         before (another pass or aspect) is fused with it, and its report adds
+                         looks, object, fused_class and fused_mine_like (default 2; 0: off)
   --stats-json FILE      write the final statistics as JSON
   --quiet                no start-up lines (warnings and the final statistics still print)
 

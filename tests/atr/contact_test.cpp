@@ -93,3 +93,15 @@ TEST_CASE("contact: open-set fields only for a model with rejection") {
   c.unknown = false;
   CHECK(atr::contact_json(c).find("\"unknown\":false,\"open_set_score\":0.5") != std::string::npos);
 }
+
+TEST_CASE("contact: multi-look fields only for an object seen before") {
+  atr::Contact c = classified();
+  CHECK(atr::contact_json(c).find("looks") == std::string::npos);
+  c.looks = 2;
+  c.object = 1;
+  c.fused_class = "rockan";
+  c.fused_mine_like = true;
+  CHECK(atr::contact_json(c).find(
+            "\"looks\":2,\"object\":1,\"fused_class\":\"rockan\",\"fused_mine_like\":true") !=
+        std::string::npos);
+}

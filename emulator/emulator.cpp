@@ -29,6 +29,8 @@ namespace {
 constexpr SimTime kNever = std::numeric_limits<SimTime>::max();
 // Render workers make the scene this far ahead of the pings along the track (ping_producer.h).
 constexpr double kPrepareAhead_m = 10.0;
+// Interval of the start-up progress lines (wall time).
+constexpr std::int64_t kStartupProgressNs = 5'000'000'000;
 // Longest sleep of the publisher: bounds how long a stop request (SIGINT) waits.
 constexpr std::int64_t kStopPollNs = 50'000'000;
 // XTF ping packet: 256-byte ping header, 64-byte channel header, sizes padded to 64 bytes
@@ -148,6 +150,7 @@ struct Emulator::Impl {
   void publish_nav(const NavSchedule::Sample& sample);
   void publish_ping(const PingSlot& slot, std::int64_t k);
   void drop_ping(std::int64_t k);
+  void check_recording();
   void update_stats(std::int64_t now);
 };
 
@@ -195,7 +198,23 @@ void Emulator::Impl::configure() {
   const vehicle::SeabedDepthFn seabed_depth = [&sc, water_depth_m](double n, double e) {
     return water_depth_m - sc.seabed().base_elevation(n, e);
   };
-  trajectory = std::make_unique<vehicle::Trajectory>(scenario.vehicle.trajectory, seabed_depth);
+  // a long path sampled finely takes minutes: report progress and honour a stop request
+  if (stop_requested()) throw StartupStopped();
+  std::int64_t next_progress_ns = clock.now_ns() + kStartupProgressNs;
+  const vehicle::PlanProgressFn progress = [&](std::size_t done, std::size_t total) {
+    if (stop_requested()) throw StartupStopped();
+    const std::int64_t now = clock.now_ns();
+    if (now < next_progress_ns || done == total) return;
+    next_progress_ns = now + kStartupProgressNs;
+    char msg[200];
+    std::snprintf(msg, sizeof msg,
+                  "preparing: sampling the seabed along the vehicle's path, %.0f %% (%zu of %zu "
+                  "points; Ctrl-C stops)",
+                  100.0 * static_cast<double>(done) / static_cast<double>(total), done, total);
+    message(msg);
+  };
+  trajectory =
+      std::make_unique<vehicle::Trajectory>(scenario.vehicle.trajectory, seabed_depth, progress);
   nav = std::make_unique<vehicle::NavSensorModel>(scenario.vehicle.nav, scenario.scene.seed);
   exact_nav =
       std::make_unique<vehicle::NavSensorModel>(vehicle::NavNoiseDesc{}, scenario.scene.seed);
@@ -336,7 +355,8 @@ void Emulator::Impl::publish_nav(const NavSchedule::Sample& sample) {
       c->send(frames[i], utc);
   if (recording) {
     for (std::size_t i = 0; i < n; ++i)
-      recording->nav_log().send(frames[i], utc);
+      recording->write_nav(frames[i], utc);
+    check_recording();
   }
   sid.advance();
   ++stats.nav_samples;
@@ -397,8 +417,19 @@ void Emulator::Impl::publish_ping(const PingSlot& slot, std::int64_t k) {
     stats.ping_latency.add(sent - pacer.wall_of(slot.truth.t));
     if (lateness > kDeadlineToleranceNs) ++stats.pings_late;
   }
-  if (recording) recording->write_ping(slot);
+  if (recording) {
+    recording->write_ping(slot);
+    check_recording();
+  }
   ++stats.pings_sent;
+}
+
+void Emulator::Impl::check_recording() {
+  // a write error (a full disk) stops the recording, not the run: said once, when it happens
+  if (!stats.recording_error.empty() || recording->error().empty()) return;
+  stats.recording_error = recording->error();
+  message("warning: --record stopped: " + stats.recording_error +
+          " (the run goes on; the recordings end with whole lines and packets)");
 }
 
 void Emulator::Impl::drop_ping(std::int64_t k) {
@@ -510,8 +541,10 @@ void Emulator::Impl::shutdown() {
 RunStats Emulator::Impl::run() {
   try {
     // start-up: what the first ping reads, before the clock starts
+    if (stop_requested()) throw StartupStopped();
     const std::int64_t t0 = clock.now_ns();
     producer->prepare(0, options.threads);
+    if (stop_requested()) throw StartupStopped();
     char msg[160];
     std::snprintf(
         msg, sizeof msg, "%s renderer: scene for the first ping and %.0f m ahead made in %.3f s",
@@ -555,6 +588,7 @@ Emulator::Emulator(const config::Scenario& scenario, const EmulatorOptions& opti
                    EmulatorHooks hooks)
     : impl_(std::make_unique<Impl>(scenario, options, clock, std::move(hooks))) {
   impl_->configure();
+  if (impl_->stop_requested()) throw StartupStopped();
   impl_->open_outputs();
 }
 

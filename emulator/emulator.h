@@ -41,6 +41,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -94,6 +95,13 @@ struct EmulatorHooks {
 // Largest samples per side for which a two-channel ping of `bytes_per_sample` fits one UDP
 // datagram (net::kMaxUdpDatagramBytes), with XTF's 64-byte padding.
 int max_udp_samples_per_side(int bytes_per_sample);
+
+// Thrown by the constructor or run() when hooks.stop_requested() turns true during start-up
+// (building the scene, planning a long trajectory, the first ping's scene): nothing was sent.
+class StartupStopped : public std::runtime_error {
+ public:
+  StartupStopped() : std::runtime_error("stopped during start-up (nothing sent)") {}
+};
 
 class Emulator {
  public:

@@ -1,6 +1,6 @@
 #include "emulator/recording.h"
 
-#include <cerrno>
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -29,15 +29,10 @@ Recording::Recording(const std::string& dir, const xtf::XtfFileHeader& header,
   const fs::path d(dir);
   xtf_ = std::make_unique<xtf::XtfWriter>((d / "pings.xtf").string(), header);
   nav_log_ = std::make_unique<can::CandumpLogWriter>((d / "nav.log").string(), can_channel);
-  truth_path_ = (d / "truth.csv").string();
-  truth_ = std::fopen(truth_path_.c_str(), "w");
-  if (!truth_) {
-    throw std::runtime_error(truth_path_ + ": cannot create (" + std::strerror(errno) + ")");
-  }
-  std::fputs(
+  truth_ = std::make_unique<io::LineFile>((d / "truth.csv").string(), "truth");
+  truth_->append(
       "ping,t_s,time_utc_ns,north_m,east_m,depth_m,heading_deg,pitch_deg,roll_deg,altitude_m,"
-      "latitude_deg,longitude_deg,speed_m_s,pose\n",
-      truth_);
+      "latitude_deg,longitude_deg,speed_m_s,pose\n");
 }
 
 Recording::~Recording() {
@@ -49,18 +44,35 @@ Recording::~Recording() {
 }
 
 void Recording::write_ping(const PingSlot& slot) {
-  xtf_->write_packet(std::span<const std::uint8_t>(slot.packet.data(), slot.packet_size));
+  if (!error_.empty()) return;
   const PingTruth& t = slot.truth;
   const Pose& p = t.pose;
   char altitude[32] = "";
   if (std::isfinite(t.altitude_m)) std::snprintf(altitude, sizeof altitude, "%.4f", t.altitude_m);
-  std::fprintf(truth_, "%lld,%.9f,%lld,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%s,%.9f,%.9f,%.4f,%s\n",
-               static_cast<long long>(slot.index), to_seconds(t.t),
-               static_cast<long long>(t.time_utc_ns), p.position_W.x(), p.position_W.y(),
-               p.position_W.z(), heading_deg_from_yaw(p.yaw), p.pitch * kDegPerRad,
-               p.roll * kDegPerRad, altitude, t.geo.latitude_deg, t.geo.longitude_deg, t.speed_m_s,
-               t.external ? "external" : "trajectory");
+  char row[512];
+  const int n = std::snprintf(
+      row, sizeof row, "%lld,%.9f,%lld,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%s,%.9f,%.9f,%.4f,%s\n",
+      static_cast<long long>(slot.index), to_seconds(t.t), static_cast<long long>(t.time_utc_ns),
+      p.position_W.x(), p.position_W.y(), p.position_W.z(), heading_deg_from_yaw(p.yaw),
+      p.pitch * kDegPerRad, p.roll * kDegPerRad, altitude, t.geo.latitude_deg, t.geo.longitude_deg,
+      t.speed_m_s, t.external ? "external" : "trajectory");
+  try {
+    xtf_->write_packet(std::span<const std::uint8_t>(slot.packet.data(), slot.packet_size));
+    truth_->append(std::string_view(row, static_cast<std::size_t>(std::clamp(n, 0, 511))));
+  } catch (const std::runtime_error& e) {
+    error_ = e.what();
+    return;
+  }
   ++pings_;
+}
+
+void Recording::write_nav(const can::CanFrame& frame, std::int64_t t_ns) {
+  if (!error_.empty()) return;
+  try {
+    nav_log_->write(frame, t_ns);
+  } catch (const std::runtime_error& e) {
+    error_ = e.what();
+  }
 }
 
 void Recording::close() {
@@ -81,12 +93,11 @@ void Recording::close() {
     }
   }
   if (truth_) {
-    const bool bad = std::fflush(truth_) != 0 || std::ferror(truth_);
-    std::fclose(truth_);
-    truth_ = nullptr;
-    if (bad) {
+    try {
+      truth_->close();
+    } catch (const std::exception& e) {
       if (!errors.empty()) errors += "; ";
-      errors += truth_path_ + ": write error";
+      errors += e.what();
     }
   }
   if (!errors.empty()) throw std::runtime_error(errors);

@@ -22,13 +22,19 @@
 //       pose           "trajectory", or "external" (--pose-from)
 //     (The XTF ping carries the navigation system's view, with its errors; truth.csv the truth.)
 //
-// Errors: a directory or file that cannot be created throws std::runtime_error naming it.
-// close() flushes everything; it is called on normal end and after SIGINT/SIGTERM.
+// nav.log and truth.csv are written one whole line per write(2) (io::LineFile), pings.xtf one
+// whole packet per write: after a crash or SIGKILL every file ends with a whole line / packet.
+//
+// Errors: a directory or file that cannot be created throws std::runtime_error naming it. A
+// write error while recording (a full disk, say) does not stop the run: the recording stops
+// there, every file keeping its whole lines and packets, and error() says which file failed and
+// why ("... ENOSPC: the disk is full"). close() is called on normal end and after SIGINT/SIGTERM.
 #include <cstdio>
 #include <memory>
 #include <string>
 
 #include "drivers/can/candump_log.h"
+#include "drivers/io/line_file.h"
 #include "drivers/xtf/xtf_file.h"
 #include "emulator/render_queue.h"
 
@@ -42,12 +48,16 @@ class Recording {
   Recording(const Recording&) = delete;
   Recording& operator=(const Recording&) = delete;
 
-  // Appends a sent ping: its packet to pings.xtf and its row to truth.csv. No allocation.
+  // Appends a sent ping: its packet to pings.xtf and its row to truth.csv. No allocation. After
+  // a write error (error() set) it does nothing.
   void write_ping(const PingSlot& slot);
-  // nav.log, as a CAN transport (frames are written with send()).
-  can::CanTransport& nav_log() { return *nav_log_; }
-  // Flushes and closes all three files (idempotent). Throws std::runtime_error on I/O errors.
+  // Appends a navigation frame to nav.log (t_ns: ns since the UNIX epoch). After a write error
+  // it does nothing.
+  void write_nav(const can::CanFrame& frame, std::int64_t t_ns);
+  // Closes all three files (idempotent). Throws std::runtime_error on I/O errors.
   void close();
+  // The write error that stopped the recording, naming the file ("" while it records).
+  const std::string& error() const { return error_; }
 
   const std::string& dir() const { return dir_; }
   std::uint64_t pings() const { return pings_; }
@@ -56,9 +66,9 @@ class Recording {
   std::string dir_;
   std::unique_ptr<xtf::XtfWriter> xtf_;
   std::unique_ptr<can::CandumpLogWriter> nav_log_;
-  std::FILE* truth_ = nullptr;
-  std::string truth_path_;
+  std::unique_ptr<io::LineFile> truth_;
   std::uint64_t pings_ = 0;
+  std::string error_;
 };
 
 }  // namespace sonarloop::emulator

@@ -156,6 +156,13 @@ XtfSchedule make_xtf_schedule(std::span<const XtfPacketTime> packets) {
   std::vector<std::optional<std::int64_t>> interp(n);
   for (std::size_t j = 0; j < n; ++j) {
     starts_segment[j] = j == 0 || !time_of(j) || !time_of(j - 1) || *time_of(j) < *time_of(j - 1);
+    if (!time_of(j)) {
+      if (s.invalid_times++ == 0) s.first_invalid_time = ping_index[j];
+    } else if (j > 0 && time_of(j - 1) && *time_of(j) - *time_of(j - 1) > kMaxPingGapNs) {
+      // an implausible jump forward: not waited for
+      starts_segment[j] = true;
+      if (s.time_jumps++ == 0) s.first_time_jump = ping_index[j];
+    }
   }
   for (std::size_t j = 0; j < n;) {
     if (!time_of(j)) {
@@ -244,6 +251,7 @@ XtfTimeline read_xtf_timeline(const std::string& path) {
     }
     times.push_back(t);
     tl.packet_bytes.push_back(record.packet.bytes.size());
+    tl.packet_offsets.push_back(record.packet.offset);
   }
   tl.schedule = make_xtf_schedule(times);
   return tl;
@@ -258,6 +266,24 @@ ReplaySummary replay_xtf(const std::string& path, const DatagramSink& send, Repl
   const XtfTimeline tl = read_xtf_timeline(path);
   const XtfSchedule& sched = tl.schedule;
   const std::size_t n = tl.packet_bytes.size();
+
+  if (sched.first_time_jump) {
+    options.on_warning(
+        "'" + path + "': the ping at byte offset " +
+        std::to_string(tl.packet_offsets[*sched.first_time_jump]) + " is more than " +
+        std::to_string(kMaxPingGapNs / 1'000'000'000) +
+        " s after the ping before it (a corrupt date?): not waited for, paced by the ping "
+        "period instead (" +
+        std::to_string(sched.time_jumps) + " such ping" + (sched.time_jumps == 1 ? "" : "s") +
+        " in the file)");
+  }
+  if (sched.first_invalid_time) {
+    options.on_warning("'" + path + "': the ping at byte offset " +
+                       std::to_string(tl.packet_offsets[*sched.first_invalid_time]) +
+                       " has invalid date fields: paced by the ping period (" +
+                       std::to_string(sched.invalid_times) + " such ping" +
+                       (sched.invalid_times == 1 ? "" : "s") + " in the file)");
+  }
 
   ReplaySummary summary;
   summary.packets_per_pass = n;
@@ -345,11 +371,16 @@ ReplaySummary replay_candump(const std::string& path,
   std::int64_t first_t = 0;
   std::int64_t last_t = 0;
   {
-    can::CandumpReader reader(path, true);
+    can::CandumpReader reader(path, true, true);
     while (const auto rec = reader.next()) {
       if (records == 0) first_t = last_t = rec->t_ns;
       last_t = std::max(last_t, rec->t_ns);
       ++records;
+    }
+    if (reader.torn_tail() != 0) {
+      options.on_warning(path + ":" + std::to_string(reader.torn_tail()) +
+                         ": the last line has no newline (a write torn by a crash or a full "
+                         "disk): ignored");
     }
   }
   ReplaySummary summary;
@@ -361,7 +392,7 @@ ReplaySummary replay_candump(const std::string& path,
   for (std::uint64_t pass = 0; passes == 0 || pass < passes; ++pass) {
     summary.pass = pass;
     const std::int64_t base = static_cast<std::int64_t>(pass) * summary.recording_span_ns;
-    can::CandumpReader reader(path, true);
+    can::CandumpReader reader(path, true, true);
     std::int64_t previous_t = first_t;
     while (const auto rec = reader.next()) {
       const bool in_order = rec->t_ns >= previous_t;

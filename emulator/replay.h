@@ -26,6 +26,10 @@
 //   * a time earlier than the previous ping's (clock stepped back) or a missing/invalid time: the
 //     ping follows the previous one after the fallback interval, and the recorded times count
 //     again from there (a discontinuity: later pings keep their recorded spacing);
+//   * a time more than kMaxPingGapNs after the previous ping's (a corrupt year, say, which once
+//     made `replay --rate 10` wait 197 years): treated as a discontinuity too, as is the step
+//     back from it; replay_xtf warns once, naming the byte offset of the first such ping, and
+//     once for the first ping with invalid date fields (month 13, hour 25, ...);
 //   * the fallback interval is the ping's own SecondsPerPing (first channel) if > 0, else the
 //     median of the file's increasing ping intervals (after spreading equal runs), else
 //     kDefaultPingIntervalNs.
@@ -51,7 +55,9 @@
 // Errors: the whole file is read once before anything is sent, so a truncated or corrupt XTF
 // file (xtf::XtfFormatError, with the byte offset) or a malformed candump line (std::runtime_error
 // "FILE:LINE: what") stops the replay before its first packet; a missing file throws
-// std::runtime_error naming it.
+// std::runtime_error naming it. The one exception: a candump log's last line without its newline
+// (torn by a crash or a full disk) is ignored with a warning naming its line, and the whole
+// lines before it are replayed.
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -101,6 +107,11 @@ std::string to_string(const ReplayRate& rate);
 // Fallback ping interval when a file gives no usable timing at all: 0.1 s, the ping period of a
 // sidescan at 75 m range (2·75 m / 1500 m/s = 0.1 s), a common survey setting.
 inline constexpr std::int64_t kDefaultPingIntervalNs = 100'000'000;
+
+// Largest step forward between two pings' recorded times that replay waits for: 60 s, six times
+// the longest ping period a sonar may have (config: ping_period_s <= 10 s). A longer step is a
+// corrupt date or a paused logger; replaying it would only stall the stream.
+inline constexpr std::int64_t kMaxPingGapNs = 60'000'000'000;
 
 struct ReplaySummary;
 
@@ -159,6 +170,10 @@ struct XtfSchedule {
   std::size_t pings = 0;
   std::size_t spread_pings = 0;    // equal-time pings spread evenly
   std::size_t fallback_pings = 0;  // pings placed by the fallback interval (after the first)
+  std::size_t time_jumps = 0;      // pings more than kMaxPingGapNs after the previous one
+  std::size_t invalid_times = 0;   // pings whose date fields are invalid (no time)
+  std::optional<std::size_t> first_time_jump;     // packet index of the first such ping
+  std::optional<std::size_t> first_invalid_time;  // packet index of the first such ping
 };
 
 // The recording time of every packet (see the header comment). Pure.
@@ -168,7 +183,8 @@ XtfSchedule make_xtf_schedule(std::span<const XtfPacketTime> packets);
 // schedule. Throws xtf::XtfFormatError (offset) or std::runtime_error (cannot open).
 struct XtfTimeline {
   std::vector<std::uint8_t> file_header;
-  std::vector<std::uint64_t> packet_bytes;  // size of each packet
+  std::vector<std::uint64_t> packet_bytes;    // size of each packet
+  std::vector<std::uint64_t> packet_offsets;  // byte offset of each packet in the file
   XtfSchedule schedule;
 };
 XtfTimeline read_xtf_timeline(const std::string& path);

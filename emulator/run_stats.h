@@ -92,6 +92,7 @@ struct RunStats {
   std::uint64_t udp_dropped = 0;  // refused or queue full (counted by the sender)
   std::uint64_t udp_bytes = 0;
   std::uint64_t recorded_pings = 0;
+  std::string recording_error;  // the write error that stopped --record ("" if none)
 
   // rendering (from the render queue and the view cache)
   std::uint64_t pings_rendered = 0;

@@ -18,6 +18,7 @@
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
 #include "tools/onboard_output.h"
+#include "tools/output_file.h"
 
 namespace sonarloop::tools {
 namespace {
@@ -159,6 +160,9 @@ int run_onboard(const std::vector<std::string>& argv) {
   options.look_radius_m =
       args.get_double("--look-radius", 0.0, 100.0).value_or(options.look_radius_m);
   const auto stats_json = args.get("--stats-json");
+  // opened now: an unwritable place fails before the run, not after it
+  std::optional<OutputFile> stats_json_file;
+  if (stats_json) stats_json_file.emplace("--stats-json", *stats_json);
 
   std::optional<atr::Model> model = load_model_if(args.get("--model"));
   if (!quiet) {
@@ -189,10 +193,8 @@ int run_onboard(const std::vector<std::string>& argv) {
   print_onboard_stats(
       stop_requested() ? "sonarloop onboard: stopped (SIGINT/SIGTERM)" : "sonarloop onboard: done",
       s, queue ? &*queue : nullptr);
-  if (stats_json) {
-    std::ofstream out(*stats_json);
-    out << onboard_stats_json(s, queue ? &*queue : nullptr) << '\n';
-    if (!out) throw std::runtime_error("--stats-json " + *stats_json + ": cannot write");
+  if (stats_json_file) {
+    stats_json_file->write_and_close(onboard_stats_json(s, queue ? &*queue : nullptr) + "\n");
   }
   return 0;
 }

@@ -8,6 +8,8 @@
 #include <numbers>
 #include <thread>
 
+#include <unistd.h>
+
 #include "drivers/json/json_writer.h"
 #include "drivers/xtf/xtf_codec.h"
 #include "drivers/xtf/xtf_file.h"
@@ -36,11 +38,43 @@ struct Track {
   Vec2 end = Vec2::Zero();
 };
 
+// Memory per ping while rendering: its pose, both sides' float amplitudes, the 8-bit slant- and
+// ground-range waterfall images, and the altitude.
+std::size_t bytes_per_ping(int bins) {
+  return sizeof(Pose) + sizeof(double) + 2 * static_cast<std::size_t>(bins) * (sizeof(float) + 2);
+}
+
+std::string gib_text(double bytes) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.1f GiB", bytes / (1024.0 * 1024.0 * 1024.0));
+  return buf;
+}
+
+// The whole line is held in memory (the waterfall images): refuse, before any allocation, a
+// line whose pings would need more than this machine's memory (issue 11: "std::bad_alloc").
+void check_track_memory(const std::string& track_text, double length_m, double spacing_m,
+                        int bins) {
+  const double pings = std::floor(length_m / spacing_m) + 1.0;
+  const double need = pings * static_cast<double>(bytes_per_ping(bins));
+  const double have = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
+                      static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+  if (std::isfinite(need) && need <= have && pings < 2e9) return;
+  char msg[512];
+  std::snprintf(msg, sizeof msg,
+                "--track %s: a line of %.6g m at %.3g m per ping is %.4g pings of %d samples "
+                "per side, about %s of memory for the waterfall, more than the %s of this "
+                "machine; shorten the track or choose a coarser --resolution-cm",
+                track_text.c_str(), length_m, spacing_m, pings, bins, gib_text(need).c_str(),
+                gib_text(have).c_str());
+  throw UsageError(msg);
+}
+
 Track parse_track(const std::string& text) {
   double n0 = 0, e0 = 0, n1 = 0, e1 = 0;
   char tail = 0;
   if (std::sscanf(text.c_str(), "%lf,%lf:%lf,%lf%c", &n0, &e0, &n1, &e1, &tail) != 4 ||
-      (n0 == n1 && e0 == e1)) {
+      (n0 == n1 && e0 == e1) || !std::isfinite(n0) || !std::isfinite(e0) || !std::isfinite(n1) ||
+      !std::isfinite(e1)) {
     throw UsageError("--track: '" + text +
                      "' is not NORTH0,EAST0:NORTH1,EAST1 (two distinct points)");
   }
@@ -117,6 +151,7 @@ int run_render(const std::vector<std::string>& argv) {
                              : sd.bin_size_m;
   const Vec2 dir = (track.end - track.start).normalized();
   const double length = (track.end - track.start).norm();
+  check_track_memory(args.get("--track").value_or("(default)"), length, spacing, setup.bins);
   const auto n_pings = static_cast<std::size_t>(std::floor(length / spacing)) + 1;
   std::vector<Pose> poses(n_pings);
   for (std::size_t k = 0; k < n_pings; ++k) {
@@ -287,7 +322,9 @@ options:
                          (default: the sonar's bin size)
   --altitude A           altitude above the mean seabed in metres (default 15 % of max range,
                          within 2..20 m)
-  --track N0,E0:N1,E1    the line, metres north/east (default: north-going over the targets)
+  --track N0,E0:N1,E1    the line, metres north/east (default: north-going over the targets);
+                         it is held in memory: a line needing more than the machine has
+                         is refused up front
   --threads N            rendering threads (default: all cores)
   --renderer R           profile (default) or raytrace (the Embree reference)
 

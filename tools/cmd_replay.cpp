@@ -239,7 +239,9 @@ const Command kReplayCommand{
 XTF: streams the recording as the live sonar stream does: the 1024-byte file header as one
 datagram first (and again every --header-every seconds of recording time), then every packet of
 the file as one datagram, byte for byte, paced by the pings' times (1/100 s resolution; equal
-or backward times are repaired as described in emulator/replay.h). Non-sonar packets are sent as
+or backward times are repaired as described in emulator/replay.h; a ping more than 60 s after
+the one before it, a corrupt date, or one with invalid date fields is not waited for: it follows
+after the ping period, with a warning naming its byte offset). Non-sonar packets are sent as
 recorded, right after the ping before them, so "file header + datagrams" is the file again.
 
 candump log: sends every frame at its logged time relative to the first (absolute deadlines, as
@@ -248,7 +250,9 @@ CAN FD frames are skipped and counted. With a socketcand server the replay start
 is streaming (see --wait-clients) and keeps the server up 1 s after the last frame.
 
 The whole file is checked before the first packet is sent: a truncated or corrupt XTF file is
-reported with its byte offset, a malformed candump line with its line number. Progress and a
+reported with its byte offset, a malformed candump line with its line number; only a candump
+log's last line without its newline (torn by a crash or a full disk) is ignored, with a
+warning. Progress and a
 summary (packets, bytes, duration, lateness) go to stderr. Ctrl-C stops after the current packet.
 
 options:

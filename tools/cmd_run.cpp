@@ -3,7 +3,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
-#include <fstream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <thread>
@@ -17,6 +17,7 @@
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
 #include "tools/onboard_output.h"
+#include "tools/output_file.h"
 #include "tools/scenario_source.h"
 
 namespace sonarloop::tools {
@@ -87,6 +88,16 @@ void print_final(const emulator::RunStats& s, const char* how) {
                s.cpu_time_s, s.startup_s);
 }
 
+// A stop request (SIGINT/SIGTERM) during start-up: nothing was sent or recorded.
+int report_startup_stop(const emulator::StartupStopped& e) {
+  const int sig = stop_signal();
+  std::fprintf(stderr, "sonarloop run: %s by %s\n", e.what(),
+               sig == SIGTERM  ? "SIGTERM"
+               : sig == SIGINT ? "SIGINT"
+                               : "a stop request");
+  return 0;
+}
+
 int run_run(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--duration"},
                          {"--udp"},
@@ -137,8 +148,13 @@ int run_run(const std::vector<std::string>& argv) {
   if (const auto e = args.get_double("--epoch", 0.0, 253402300799.0)) {
     o.epoch_utc_ns = static_cast<std::int64_t>(std::llround(*e * 1e9));
   }
-  o.stats_interval_s = quiet ? 0.0 : args.get_double("--stats-every", 0.0, 3600.0).value_or(5.0);
+  // validated with --quiet too (which silences the lines)
+  const double stats_every = args.get_double("--stats-every", 0.0, 3600.0).value_or(5.0);
+  o.stats_interval_s = quiet ? 0.0 : stats_every;
   const auto stats_json = args.get("--stats-json");
+  // opened now: an unwritable place fails before the run, not after it
+  std::optional<OutputFile> stats_json_file;
+  if (stats_json) stats_json_file.emplace("--stats-json", *stats_json);
   const auto classify = args.get("--classify");
   if (args.has("--contacts") && !classify) throw UsageError("--contacts needs --classify MODEL");
   // the model first: a bad file fails before the scene is built
@@ -171,7 +187,16 @@ int run_run(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "sonarloop run: scenario '%s' (seed %llu), preparing the scene ...\n",
                  scenario.scene.name.c_str(), static_cast<unsigned long long>(scenario.scene.seed));
   }
-  emulator::Emulator emu(scenario, o, clock, hooks);
+  // before the start-up work: Ctrl-C or SIGTERM during a long start-up stops it cleanly (the
+  // emulator polls the flag); a second one ends the process at once
+  install_stop_flag();
+  std::optional<emulator::Emulator> emu_holder;
+  try {
+    emu_holder.emplace(scenario, o, clock, hooks);
+  } catch (const emulator::StartupStopped& e) {
+    return report_startup_stop(e);
+  }
+  emulator::Emulator& emu = *emu_holder;
   if (model) {
     onboard = std::make_unique<InProcessOnboard>(std::move(*model), args.get("--contacts"),
                                                  xtf::encode_file_header(emu.file_header()),
@@ -203,19 +228,23 @@ int run_run(const std::vector<std::string>& argv) {
                    "hint: no --udp given, pings are not streamed (e.g. --udp 127.0.0.1:5600)\n");
     }
   }
-  install_stop_flag();  // a second Ctrl-C ends the process at once
-  const emulator::RunStats stats = emu.run();
+  emulator::RunStats stats;
+  try {
+    stats = emu.run();
+  } catch (const emulator::StartupStopped& e) {
+    return report_startup_stop(e);
+  }
   const int sig = stop_signal();
   print_final(stats, sig == SIGINT    ? "stopped by SIGINT"
                      : sig == SIGTERM ? "stopped by SIGTERM"
                                       : "done");
   if (onboard) print_onboard_stats("onboard", onboard->finish(), &onboard->queue());
-  if (stats_json) {
-    std::ofstream out(*stats_json);
-    out << emulator::stats_json(stats) << '\n';
-    if (!out) throw std::runtime_error("--stats-json " + *stats_json + ": cannot write");
+  // after the statistics, so that a full disk never hides them
+  if (!stats.recording_error.empty()) {
+    std::fprintf(stderr, "sonarloop run: error: --record: %s\n", stats.recording_error.c_str());
   }
-  return 0;
+  if (stats_json_file) stats_json_file->write_and_close(emulator::stats_json(stats) + "\n");
+  return stats.recording_error.empty() ? 0 : 1;
 }
 
 }  // namespace
@@ -239,14 +268,18 @@ options:
   --can SPEC             publish navigation on SPEC; repeat for several: vcan0 (SocketCAN),
                          socketcand:HOST:PORT (a socketcand server for python-can & co),
                          log:FILE (candump log), none
-  --record DIR           write DIR/pings.xtf, DIR/nav.log (candump) and DIR/truth.csv
+  --record DIR           write DIR/pings.xtf, DIR/nav.log (candump) and DIR/truth.csv,
+                         each a whole packet / line per write (whole after any crash); on
+                         a write error (a full disk) the recording stops, the run goes on,
+                         and run exits with status 1 after the statistics
   --rate R               realtime (default), max (as fast as possible, nothing dropped,
                          reproducible), or a factor X of real time (0.01..1000)
   --threads N            render threads (default: all cores)
   --quiet                no start-up lines or live statistics (warnings and the final
                          summary are still printed)
   --stats-every S        live statistics interval in wall seconds (default 5; 0 = none)
-  --stats-json FILE      write the final statistics as JSON
+  --stats-json FILE      write the final statistics as JSON (FILE is opened at start:
+                         an unwritable place fails before the run)
   --pose-from SPEC       follow an external vehicle: can:IFACE, socketcand:HOST:PORT[:CHANNEL]
                          or udp:HOST:PORT (emulator/pose_message.md); pings pause while the
                          pose is stale

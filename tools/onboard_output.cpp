@@ -64,11 +64,11 @@ void print_onboard_stats(const char* who, const atr::OnboardStats& s,
                "duplicated %llu, reordered %llu, malformed %llu, before a header %llu\n",
                who, ull(r.datagrams), ull(r.file_headers), ull(r.pings), ull(r.lost), ull(r.late),
                ull(r.duplicates), ull(r.reordered), ull(r.malformed), ull(r.before_header));
-  if (r.other_packets || r.restarts || r.header_changes || s.waterfall_unusable) {
+  if (r.other_packets || r.restarts || r.header_changes || r.unconfirmed || s.waterfall_unusable) {
     std::fprintf(stderr,
                  "  also: %llu other XTF packets, %llu stream restarts, %llu header changes, "
-                 "%llu unusable pings\n",
-                 ull(r.other_packets), ull(r.restarts), ull(r.header_changes),
+                 "%llu unconfirmed ping-number jumps (junk), %llu unusable pings\n",
+                 ull(r.other_packets), ull(r.restarts), ull(r.header_changes), ull(r.unconfirmed),
                  ull(s.waterfall_unusable));
   }
   if (queue) {
@@ -106,6 +106,7 @@ std::string onboard_stats_json(const atr::OnboardStats& s, const atr::PacketQueu
   w.field("late", r.late).field("duplicates", r.duplicates).field("reordered", r.reordered);
   w.field("malformed", r.malformed).field("before_header", r.before_header);
   w.field("other_packets", r.other_packets).field("restarts", r.restarts);
+  w.field("unconfirmed", r.unconfirmed);
   w.end_object();
   if (queue) {
     w.key("queue").begin_object();

@@ -341,6 +341,19 @@ std::vector<TargetDesc> parse_targets(const Field& f, const SeabedDesc& s) {
     }
     out.push_back(std::move(t));
   }
+  // position_m has no default: a target silently at the origin is never what was meant
+  // (checked after every other key of every target, so those errors come first)
+  const Vec2 lo = s.origin_m;
+  const Vec2 hi = s.origin_m + s.extent_m;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const Field item = f.item(i);
+    if (item.has("position_m")) continue;
+    item.child("position_m")
+        .fail("is not set: every target needs its position",
+              "[north, east] in metres inside the seabed extent ([" + format_number(lo.x()) + ", " +
+                  format_number(hi.x()) + "] x [" + format_number(lo.y()) + ", " +
+                  format_number(hi.y()) + "])");
+  }
   return out;
 }
 

@@ -296,6 +296,28 @@ void check_rules(const Field& f, const SonarDesc& d) {
                 " (" + xtf_note + ")");
   }
 
+  // a ping period no shorter than the two-way travel time of the maximum range: the echo of
+  // max_range_m (2·R/c later) must be back before the next ping goes out
+  const double two_way_s = 2.0 * range_m / c;
+  if (d.ping_period_s > 0.0 && d.ping_period_s < two_way_s * (1.0 - kRuleSlack)) {
+    const std::string period = format_number(d.ping_period_s);
+    const std::string why = " (c = " + format_number(c) +
+                            " m/s): the echo from the maximum range must return before the next "
+                            "ping";
+    if (blamed(f, "ping_period_s", "max_range_m") == 0) {
+      f.child("ping_period_s")
+          .fail(period + " s is shorter than the two-way travel time 2 max_range_m / c = " +
+                    approx(two_way_s) + " s of max_range_m " + format_number(range_m) + why,
+                "0 (auto: 2 max_range_m / c), or " + at_least(two_way_s) +
+                    " .. 10 for max_range_m " + format_number(range_m));
+    }
+    f.child("max_range_m")
+        .fail(format_number(range_m) + " has a two-way travel time 2 max_range_m / c = " +
+                  approx(two_way_s) + " s, longer than ping_period_s " + period + why,
+              "<= " + at_most(d.ping_period_s * c / 2.0) + " for ping_period_s " + period +
+                  "; or ping_period_s 0 (auto)");
+  }
+
   // the array must be longer than a wavelength to form a beam
   const double wavelength_m = c / d.frequency_hz;
   if (!(wavelength_m < d.array_length_m)) {  // strict: equal lengths form no beam either

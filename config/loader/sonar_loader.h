@@ -19,7 +19,10 @@
 //   (the WORD-safe limit);
 // - a chirp (chirp_bandwidth_khz > 0): its range resolution c/(2B) at most 4 range bins (finer
 //   bins only oversample the blur), and B < 2·frequency (the band f ± B/2 stays above 0 Hz);
-// - the wavelength c/f shorter than array_length_m (otherwise the array forms no beam).
+// - the wavelength c/f shorter than array_length_m (otherwise the array forms no beam);
+// - ping_period_s 0 (auto) or at least the two-way travel time 2·max_range_m/c (the echo of the
+//   maximum range is back before the next ping; a shorter period is physically impossible for
+//   one sidescan and would make `run` attempt absurd ping rates).
 // When a rule fails, the error names the key of the pair that this map sets (the other value
 // came from the preset), and the message says what would satisfy the rule.
 //

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -275,7 +276,8 @@ std::string Range::describe() const {
 // ---------------------------------------------------------------------------------------------
 // Field: construction and structure
 
-Field::Field(YAML::Node node, std::string file) : node_(std::move(node)), file_(std::move(file)) {
+Field::Field(YAML::Node node, std::string file, std::shared_ptr<const std::string> text)
+    : node_(std::move(node)), file_(std::move(file)), text_(std::move(text)) {
   line_ = mark_line(node_.Mark());
   column_ = mark_column(node_.Mark());
   attach_state(nullptr);
@@ -285,6 +287,7 @@ Field Field::make_child(std::string path, YAML::Node value, const YAML::Mark& fa
                         bool present, std::shared_ptr<NodeState>* slot) const {
   Field f;
   f.file_ = file_;
+  f.text_ = text_;
   f.path_ = std::move(path);
   f.present_ = present;
   if (present) {
@@ -587,11 +590,118 @@ bool Field::as_bool() const {
   fail(quote(text) + " is not true or false", allowed);
 }
 
+namespace {
+
+// Byte index of the first byte that does not start a valid UTF-8 sequence (RFC 3629: no
+// overlong forms, no surrogates, nothing above U+10FFFF); nullopt if the text is valid.
+std::optional<std::size_t> invalid_utf8_at(std::string_view s) {
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const auto b = static_cast<unsigned char>(s[i]);
+    std::size_t len = 0;
+    unsigned lo = 0x80, hi = 0xBF;  // allowed range of the second byte
+    if (b < 0x80) {
+      len = 1;
+    } else if (b >= 0xC2 && b <= 0xDF) {
+      len = 2;
+    } else if (b >= 0xE0 && b <= 0xEF) {
+      len = 3;
+      if (b == 0xE0) lo = 0xA0;
+      if (b == 0xED) hi = 0x9F;
+    } else if (b >= 0xF0 && b <= 0xF4) {
+      len = 4;
+      if (b == 0xF0) lo = 0x90;
+      if (b == 0xF4) hi = 0x8F;
+    } else {
+      return i;
+    }
+    if (i + len > s.size()) return i;
+    for (std::size_t k = 1; k < len; ++k) {
+      const auto c = static_cast<unsigned char>(s[i + k]);
+      if (c < (k == 1 ? lo : 0x80u) || c > (k == 1 ? hi : 0xBFu)) return i;
+    }
+    i += len;
+  }
+  return std::nullopt;
+}
+
+// Whether a source line reads like a map key: optional indent, a word, ':' then a blank or the
+// end ("seed: 1", "  sonar:").
+std::optional<std::string> key_of_line(std::string_view line) {
+  std::size_t i = 0;
+  while (i < line.size() && (line[i] == ' ' || line[i] == '\t'))
+    ++i;
+  const std::size_t start = i;
+  while (i < line.size() && (std::isalnum(static_cast<unsigned char>(line[i])) || line[i] == '_'))
+    ++i;
+  if (i == start || i >= line.size() || line[i] != ':') return std::nullopt;
+  if (i + 1 < line.size() && line[i + 1] != ' ' && line[i + 1] != '\t' && line[i + 1] != '\r')
+    return std::nullopt;
+  return std::string(line.substr(start, i - start + 1));
+}
+
+struct RunawayQuote {
+  int line_offset = 0;  // lines after the quote's own line
+  std::string key;      // "seed:"
+};
+
+// A quoted scalar opening at text[pos]: its closing quote is searched for (escapes skipped) and
+// every line it runs over is checked for a key. nullopt: closed on its own line, or only
+// continuation lines that are not keys (a legitimate multi-line quoted text).
+std::optional<RunawayQuote> runaway_quote(const std::string& text, std::size_t pos) {
+  if (pos >= text.size() || (text[pos] != '"' && text[pos] != '\'')) return std::nullopt;
+  const char q = text[pos];
+  int lines = 0;
+  for (std::size_t i = pos + 1; i < text.size(); ++i) {
+    const char c = text[i];
+    if (q == '"' && c == '\\') {
+      ++i;  // an escaped character, whatever it is
+      continue;
+    }
+    if (c == q) {
+      if (q == '\'' && i + 1 < text.size() && text[i + 1] == '\'') {
+        ++i;  // '' is a quote inside single quotes
+        continue;
+      }
+      return std::nullopt;  // closed
+    }
+    if (c == '\n') {
+      ++lines;
+      const std::size_t end = text.find('\n', i + 1);
+      const std::string_view line(text.data() + i + 1,
+                                  (end == std::string::npos ? text.size() : end) - (i + 1));
+      if (const auto key = key_of_line(line)) return RunawayQuote{lines, *key};
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 std::string Field::as_string() const {
   const std::string allowed = "text (\"\" for an empty text)";
   if (is_null()) fail("has no value", allowed);
   if (!node_.IsScalar()) fail(describe_value() + " is not text", allowed);
-  return node_.Scalar();
+  std::string value = node_.Scalar();
+  // yaml-cpp folds a quoted text that runs over several lines into one: `name: "abc` followed
+  // by `seed: 1` reads as the name "abc seed: 1 " and seed silently keeps its default
+  if (text_ && node_.Mark().pos >= 0) {
+    if (const auto r = runaway_quote(*text_, static_cast<std::size_t>(node_.Mark().pos))) {
+      fail("is a quoted text whose closing quote is missing: it runs over " +
+               std::to_string(r->line_offset) + " line" + (r->line_offset == 1 ? "" : "s") +
+               " to '" + r->key + "' (line " + std::to_string(line_ + r->line_offset) +
+               "), which reads like the next key",
+           "text with its closing quote on the same line");
+    }
+  }
+  if (const auto at = invalid_utf8_at(value)) {
+    char byte[8];
+    std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(value[*at]));
+    fail("is not valid UTF-8 (byte " + std::string(byte) + " at byte " + std::to_string(*at) +
+             " of the text)",
+         "text in UTF-8");
+  }
+  return value;
 }
 
 std::string Field::scalar_for_name(std::string_view noun, const std::string& allowed) const {
@@ -739,7 +849,8 @@ Field parse_document(const std::string& yaml_text, const std::string& file) {
                                     mark_column(m)});
     }
     const YAML::Node root = YAML::Load(yaml_text);
-    return Field(root.IsDefined() ? root : YAML::Node(YAML::NodeType::Null), file);
+    return Field(root.IsDefined() ? root : YAML::Node(YAML::NodeType::Null), file,
+                 std::make_shared<const std::string>(yaml_text));
   } catch (const YAML::Exception& e) {
     throw ConfigError(syntax_issue(file, e.msg, e.mark));
   }

@@ -106,8 +106,9 @@ struct NameTable {
 // so any of them may be finished.
 class Field {
  public:
-  // The root of a document (its path is empty). A null node stands for an empty map.
-  Field(YAML::Node node, std::string file);
+  // The root of a document (its path is empty). A null node stands for an empty map. `text`
+  // (optional): the document's source, for checks yaml-cpp cannot make (an unclosed quote).
+  Field(YAML::Node node, std::string file, std::shared_ptr<const std::string> text = nullptr);
   // Copies share the node (and the record of read keys). Assignment is deleted: yaml-cpp's
   // Node::operator= rebinds the node INSIDE the document, so `f = f.child("x")` would silently
   // rewrite the parsed tree.
@@ -162,6 +163,8 @@ class Field {
   int as_int(int lo, int hi) const;
   std::uint64_t as_uint64(std::uint64_t lo, std::uint64_t hi) const;
   bool as_bool() const;
+  // Text: valid UTF-8 only; a quoted text whose closing quote is missing, so that it runs over
+  // a following line reading like a key ("name: \"abc" then "seed: 1"), is an error.
   std::string as_string() const;
   template <class T>
   T as_enum(const NameTable<T>& table) const;
@@ -213,7 +216,8 @@ class Field {
   int line_ = 0;
   int column_ = 0;
   bool present_ = true;
-  std::shared_ptr<NodeState> state_;  // maps and lists only
+  std::shared_ptr<NodeState> state_;         // maps and lists only
+  std::shared_ptr<const std::string> text_;  // the document's source (may be null)
 };
 
 // Reads a whole text file; a missing or unreadable file -> ConfigError naming the path.

@@ -1,9 +1,11 @@
 #include "drivers/can/candump_log.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <stdexcept>
 
+#include "drivers/io/line_file.h"
 #include "drivers/net/unique_fd.h"
 
 namespace sonarloop::can {
@@ -12,7 +14,6 @@ namespace {
 constexpr std::int64_t kNsPerSecond = 1'000'000'000;
 constexpr std::uint32_t kCanErrFlag = 0x20000000u;  // linux/can.h CAN_ERR_FLAG
 constexpr std::size_t kMaxChannelChars = 64;
-constexpr std::size_t kWriteBufferBytes = 64 * 1024;
 constexpr char kHexDigits[] = "0123456789ABCDEF";
 
 int hex_value(char c) {
@@ -26,13 +27,24 @@ bool is_space(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
 }
 
+// Longest piece of input quoted in a message.
+constexpr std::size_t kMaxQuotedChars = 100;
+
 std::string quoted(std::string_view s) {
-  // built by appending: GCC 12's -Wrestrict misfires on "'" + std::string(s) + "'" at -O3
+  // built by appending: GCC 12's -Wrestrict misfires on "'" + std::string(s) + "'" at -O3.
+  // Input in messages is cut to kMaxQuotedChars: a 10 MB line must not be echoed whole.
   std::string out;
-  out.reserve(s.size() + 2);
+  const bool cut = s.size() > kMaxQuotedChars;
+  out.reserve(std::min(s.size(), kMaxQuotedChars) + 40);
   out += '\'';
-  out += s;
-  out += '\'';
+  out += s.substr(0, kMaxQuotedChars);
+  if (cut) {
+    out += "...' (";
+    out += std::to_string(s.size());
+    out += " characters)";
+  } else {
+    out += '\'';
+  }
   return out;
 }
 
@@ -233,10 +245,7 @@ CandumpLogWriter::CandumpLogWriter(const std::string& path, std::string channel)
     throw std::invalid_argument("candump log " + path + ": channel name '" + channel_ +
                                 "' must be 1.." + std::to_string(kMaxChannelChars) +
                                 " characters without spaces");
-  file_ = std::fopen(path.c_str(), "wb");
-  if (!file_)
-    throw std::runtime_error("candump log " + path + ": cannot create: " + net::errno_text(errno));
-  std::setvbuf(file_, nullptr, _IOFBF, kWriteBufferBytes);
+  file_ = std::make_unique<io::LineFile>(path, "candump log");
 }
 
 CandumpLogWriter::~CandumpLogWriter() {
@@ -255,28 +264,19 @@ void CandumpLogWriter::write(const CanFrame& frame, std::int64_t t_ns) {
   const std::size_t n = format_candump_line(frame, t_ns, channel_, line, sizeof line);
   std::lock_guard lock(mu_);
   if (!file_) throw std::runtime_error("candump log " + path_ + ": write after close");
-  if (std::fwrite(line, 1, n, file_) != n)
-    throw std::runtime_error("candump log " + path_ + ": write failed: " + net::errno_text(errno));
+  file_->append(std::string_view(line, n));  // one whole line per write (line_file.h)
   ++frames_;
 }
 
 void CandumpLogWriter::flush() {
-  std::lock_guard lock(mu_);
-  if (file_ && std::fflush(file_) != 0)
-    throw std::runtime_error("candump log " + path_ + ": flush failed: " + net::errno_text(errno));
+  // every line is already in the file (no user-space buffer)
 }
 
 void CandumpLogWriter::close() {
   std::lock_guard lock(mu_);
   if (!file_) return;
-  const bool flush_ok = std::fflush(file_) == 0;
-  const int flush_err = errno;
-  const bool close_ok = std::fclose(file_) == 0;
-  const int close_err = errno;
-  file_ = nullptr;
-  if (!flush_ok || !close_ok)
-    throw std::runtime_error("candump log " + path_ + ": closing failed: " +
-                             net::errno_text(flush_ok ? close_err : flush_err));
+  const std::unique_ptr<io::LineFile> f = std::move(file_);
+  f->close();
 }
 
 std::uint64_t CandumpLogWriter::frames_written() const {
@@ -329,8 +329,11 @@ CandumpLineStatus parse_candump_line(std::string_view line, CandumpRecord& out,
   return CandumpLineStatus::kRecord;
 }
 
-CandumpReader::CandumpReader(const std::string& path, bool strict)
-    : path_(path), strict_(strict), in_(path, std::ios::binary) {
+CandumpReader::CandumpReader(const std::string& path, bool strict, bool ignore_torn_tail)
+    : path_(path),
+      strict_(strict),
+      ignore_torn_tail_(ignore_torn_tail),
+      in_(path, std::ios::binary) {
   if (!in_)
     throw std::runtime_error("candump log " + path + ": cannot open: " + net::errno_text(errno));
 }
@@ -340,14 +343,19 @@ std::optional<CandumpRecord> CandumpReader::next() {
   std::string error;
   while (std::getline(in_, line_)) {
     ++line_number_;
+    // getline stopped at the end of the file, not at a '\n': the last line is unterminated
+    if (ignore_torn_tail_ && in_.eof() && !line_.empty()) {
+      torn_tail_ = line_number_;
+      break;
+    }
     switch (parse_candump_line(line_, rec, error)) {
       case CandumpLineStatus::kRecord:
         return rec;
       case CandumpLineStatus::kSkip:
         break;
       case CandumpLineStatus::kError:
-        last_error_ = path_ + ":" + std::to_string(line_number_) + ": " + error + ": '" +
-                      line_.substr(0, 200) + "'";
+        last_error_ =
+            path_ + ":" + std::to_string(line_number_) + ": " + error + ": " + quoted(line_);
         ++malformed_;
         if (strict_) throw std::runtime_error(last_error_);
         break;

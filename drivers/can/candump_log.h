@@ -18,12 +18,14 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
 
 #include "drivers/can/can_transport.h"
+#include "drivers/io/line_file.h"
 
 namespace sonarloop::can {
 
@@ -36,12 +38,14 @@ class CandumpLogWriter final : public CanTransport {
   CandumpLogWriter(const CandumpLogWriter&) = delete;
   CandumpLogWriter& operator=(const CandumpLogWriter&) = delete;
 
-  // Appends one line. t_ns >= 0 (ns since the UNIX epoch); throws std::invalid_argument for a
-  // negative time and std::runtime_error on a write error or after close(). Allocation-free.
+  // Appends one line with one write (io::LineFile: a crash or a full disk never leaves a torn
+  // line). t_ns >= 0 (ns since the UNIX epoch); throws std::invalid_argument for a negative
+  // time and std::runtime_error on a write error (naming the file and saying "the disk is full"
+  // for ENOSPC) or after close(). Allocation-free unless it throws.
   void write(const CanFrame& frame, std::int64_t t_ns);
   void send(const CanFrame& frame, std::int64_t t_ns) override { write(frame, t_ns); }
   std::string describe() const override { return "candump log " + path_; }
-  // Writes buffered lines to the file. Throws std::runtime_error on an I/O error.
+  // Nothing to do: every line is written when it is sent.
   void flush() override;
   // Flushes and closes; later writes throw. Throws std::runtime_error on an I/O error.
   void close();
@@ -53,7 +57,7 @@ class CandumpLogWriter final : public CanTransport {
   std::string path_;
   std::string channel_;
   mutable std::mutex mu_;
-  std::FILE* file_ = nullptr;
+  std::unique_ptr<io::LineFile> file_;
   std::uint64_t frames_ = 0;
 };
 
@@ -88,7 +92,11 @@ class CandumpReader {
  public:
   // strict: a malformed line throws std::runtime_error "FILE:LINE: what: 'text'". Otherwise it is
   // skipped and counted (malformed_lines(), last_error()). Throws if the file cannot be opened.
-  explicit CandumpReader(const std::string& path, bool strict = true);
+  // ignore_torn_tail: a last line without its '\n' (a write torn by a crash or a full disk;
+  // every candump writer ends its lines) is not read, not even when it parses, and torn_tail()
+  // gives its line number; otherwise it is read as any line.
+  explicit CandumpReader(const std::string& path, bool strict = true,
+                         bool ignore_torn_tail = false);
 
   // The next record, nullopt at the end of the file.
   std::optional<CandumpRecord> next();
@@ -96,10 +104,14 @@ class CandumpReader {
   std::size_t line_number() const { return line_number_; }  // of the last line read
   std::size_t malformed_lines() const { return malformed_; }
   const std::string& last_error() const { return last_error_; }
+  // Line number of the torn last line that was ignored (0: none, or not at the end yet).
+  std::size_t torn_tail() const { return torn_tail_; }
 
  private:
   std::string path_;
   bool strict_;
+  bool ignore_torn_tail_;
+  std::size_t torn_tail_ = 0;
   std::ifstream in_;
   std::string line_;
   std::size_t line_number_ = 0;

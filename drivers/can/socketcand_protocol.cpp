@@ -55,7 +55,7 @@ std::size_t format_socketcand_frame(const CanFrame& frame, std::int64_t t_ns, ch
   if (t_ns < 0) t_ns = 0;
   const std::uint8_t len = frame.len > 8 ? 8 : frame.len;
   const int n = std::snprintf(
-      out, out_size, frame.extended ? "< frame %08X %lld.%06lld " : "< frame %03X %lld.%06lld ",
+      out, out_size, frame.extended ? "\n< frame %08X %lld.%06lld " : "\n< frame %03X %lld.%06lld ",
       static_cast<unsigned>(frame.extended ? frame.id & kCanEffMask : frame.id & kCanSffMask),
       static_cast<long long>(t_ns / kNsPerSecond),
       static_cast<long long>((t_ns % kNsPerSecond) / 1000));
@@ -64,7 +64,7 @@ std::size_t format_socketcand_frame(const CanFrame& frame, std::int64_t t_ns, ch
     out[pos++] = kHexDigits[frame.data[i] >> 4];
     out[pos++] = kHexDigits[frame.data[i] & 0xF];
   }
-  for (char c : std::string_view(" >\n"))
+  for (char c : std::string_view(" >"))
     out[pos++] = c;
   out[pos] = '\0';
   return pos;

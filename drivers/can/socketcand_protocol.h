@@ -1,10 +1,13 @@
 #pragma once
 // socketcand ASCII protocol pieces shared by the server and the client (formats.md §4.4).
 // Every element is "< ... >"; in rawmode the server sends
-//   < frame 09F80123 1699999999.123456 00E6B523B1AC6A06 >\n
-// (id %08X for 29-bit, %03X for 11-bit; time SEC.USEC; data uppercase hex without spaces; the
-// trailing newline keeps python-can 4.1's parser from losing a '<' across recv() calls) and the
-// client sends
+//   \n< frame 09F80123 1699999999.123456 00E6B523B1AC6A06 >
+// (id %08X for 29-bit, %03X for 11-bit; time SEC.USEC; data uppercase hex without spaces). The
+// newline goes BEFORE each frame: python-can 4.1 drops the one character after the last complete
+// element it parses from a read, so without a separator a frame split across recv() calls loses
+// its '<', and with a trailing "\n" several frames in one read leave a lone "\n" that it logs as
+// "Bad data: No opening < found" (formats.md 4.4 has the measurement). The leading "\n" is the
+// character it drops. The client sends
 //   < send 09F80123 8 00 E6 B5 23 B1 AC 6A 06 >
 // (python-can 4.1 writes the id unpadded and the bytes as lowercase hex without zero padding:
 // "< send 9F80123 8 0 e6 b5 23 b1 ac 6a 6 >"; both are accepted). An id is extended when it has
@@ -23,7 +26,7 @@ namespace sonarloop::can {
 // Longest element either side produces (a "< send >" with 8 bytes is 50 characters).
 inline constexpr std::size_t kSocketcandMaxElement = 128;
 
-// "< frame ... >\n" into out; returns the length (0 if out is too small; 80 bytes always do).
+// "\n< frame ... >" into out; returns the length (0 if out is too small; 80 bytes always do).
 // Negative times are written as 0.
 std::size_t format_socketcand_frame(const CanFrame& frame, std::int64_t t_ns, char* out,
                                     std::size_t out_size);

@@ -19,7 +19,7 @@
 namespace sonarloop::can {
 namespace {
 
-using Clock = std::chrono::steady_clock;  // I/O pacing only (the rawmode start delay)
+using Clock = std::chrono::steady_clock;  // I/O pacing only (start delay, handshake timeout)
 
 constexpr char kHi[] = "< hi >";
 constexpr char kOk[] = "< ok >";
@@ -81,6 +81,7 @@ struct SocketcandServer::Client {
   net::UniqueFd fd;
   std::string peer;
   State state = State::kAwaitOpen;
+  Clock::time_point open_by{};  // handshake deadline while in kAwaitOpen
   Clock::time_point raw_at{};
   SocketcandStreamParser parser;
   ByteRing backlog;
@@ -173,15 +174,18 @@ void SocketcandServer::emit(const std::vector<std::string>& warnings) const {
   }
 }
 
+std::string SocketcandServer::slow_reason() const {
+  return "too slow (backlog full, limit " + std::to_string(options_.client_backlog_bytes) +
+         " bytes)";
+}
+
 void SocketcandServer::drop_client(Client& c, std::string_view why,
                                    std::vector<std::string>* warnings) {
   if (c.dead) return;
   c.dead = true;
   ::shutdown(c.fd.get(), SHUT_RDWR);
   if (warnings)
-    warnings->push_back(describe() + ": dropped client " + c.peer + ": " + std::string(why) +
-                        " (backlog limit " + std::to_string(options_.client_backlog_bytes) +
-                        " bytes)");
+    warnings->push_back(describe() + ": dropped client " + c.peer + ": " + std::string(why));
 }
 
 void SocketcandServer::flush_backlog(Client& c) {
@@ -225,7 +229,7 @@ void SocketcandServer::reply(Client& c, const char* text, std::size_t size,
   if (done == size) return;
   if (!c.backlog.push(text + done, size - done)) {
     ++stats_.clients_dropped_slow;
-    drop_client(c, "too slow (backlog full)", warnings);
+    drop_client(c, slow_reason(), warnings);
   }
 }
 
@@ -246,7 +250,7 @@ void SocketcandServer::send(const CanFrame& frame, std::int64_t t_ns) {
           reply(c, msg, n, &warnings);
         } else if (!c.backlog.push(msg, n)) {  // start delay: queue until it is over
           ++stats_.clients_dropped_slow;
-          drop_client(c, "too slow (backlog full)", &warnings);
+          drop_client(c, slow_reason(), &warnings);
         }
         // the I/O thread must watch for POLLOUT (new backlog) or close a dropped client
         if (c.dead || (was_empty && !c.backlog.empty())) need_wake = true;
@@ -316,21 +320,49 @@ void SocketcandServer::accept_clients(std::vector<std::string>& warnings) {
     std::memcpy(&pa.storage, &peer, sizeof peer);
     pa.length = len;
     const std::string peer_name = net::to_string(net::to_host_port(pa));
-    const auto live =
-        std::count_if(clients_.begin(), clients_.end(), [](const auto& c) { return !c->dead; });
-    if (static_cast<std::size_t>(live) >= options_.max_clients) {
+    auto live = static_cast<std::size_t>(
+        std::count_if(clients_.begin(), clients_.end(), [](const auto& c) { return !c->dead; }));
+    if (live >= options_.max_clients) {
+      // make room by evicting the oldest client that has not opened the bus yet (clients_ is
+      // in connection order)
+      const auto pending = std::find_if(clients_.begin(), clients_.end(), [](const auto& c) {
+        return !c->dead && c->state == Client::State::kAwaitOpen;
+      });
+      if (pending != clients_.end()) {
+        ++stats_.clients_dropped_handshake;
+        drop_client(**pending, "evicted for a new connection: no '< open CHANNEL >' yet",
+                    &warnings);
+        --live;
+      }
+    }
+    if (live >= options_.max_clients) {
       ++stats_.clients_rejected;
       [[maybe_unused]] const ssize_t n =
           ::send(fd, kTooMany, sizeof kTooMany - 1, MSG_DONTWAIT | MSG_NOSIGNAL);
       warnings.push_back(describe() + ": rejected client " + peer_name + ": already " +
-                         std::to_string(options_.max_clients) + " clients");
+                         std::to_string(options_.max_clients) + " clients with the bus open");
       continue;  // owned closes it
     }
     ++stats_.clients_accepted;
     auto c = std::make_unique<Client>(owned.get(), peer_name, options_.client_backlog_bytes);
     static_cast<void>(owned.release());
+    c->open_by = Clock::now() + std::chrono::milliseconds(options_.handshake_timeout_ms);
     reply(*c, kHi, sizeof kHi - 1, &warnings);
     clients_.push_back(std::move(c));
+  }
+}
+
+void SocketcandServer::expire_handshakes(std::vector<std::string>& warnings) {
+  if (options_.handshake_timeout_ms <= 0) return;
+  const auto now = Clock::now();
+  for (auto& c : clients_) {
+    if (!c->dead && c->state == Client::State::kAwaitOpen && c->open_by <= now) {
+      ++stats_.clients_dropped_handshake;
+      drop_client(*c,
+                  "no '< open CHANNEL >' within " + std::to_string(options_.handshake_timeout_ms) +
+                      " ms of connecting",
+                  &warnings);
+    }
   }
 }
 
@@ -448,8 +480,11 @@ void SocketcandServer::run() {
         // a client in its start delay keeps its backlog until the delay is over
         if (c->state != Client::State::kRawPending && !c->backlog.empty()) events |= POLLOUT;
         fds.push_back({c->fd.get(), events, 0});
-        if (c->state == Client::State::kRawPending) {
-          const auto wait = std::chrono::ceil<std::chrono::milliseconds>(c->raw_at - now).count();
+        const bool timed_open =
+            c->state == Client::State::kAwaitOpen && options_.handshake_timeout_ms > 0;
+        if (c->state == Client::State::kRawPending || timed_open) {
+          const auto at = c->state == Client::State::kRawPending ? c->raw_at : c->open_by;
+          const auto wait = std::chrono::ceil<std::chrono::milliseconds>(at - now).count();
           const int ms = static_cast<int>(std::max<std::int64_t>(0, wait));
           timeout_ms = timeout_ms < 0 ? ms : std::min(timeout_ms, ms);
         }
@@ -477,6 +512,7 @@ void SocketcandServer::run() {
         if (fds[i].revents & (POLLIN | POLLHUP | POLLERR)) read_client(c, warnings, queued);
         if (fds[i].revents & POLLOUT) flush_backlog(c);
       }
+      expire_handshakes(warnings);
       if (fds[1].revents & POLLIN) accept_clients(warnings);
       const auto now = Clock::now();
       for (auto& c : clients_) {

@@ -5,8 +5,9 @@
 //
 // Per client: "< hi >" on connect (alone), "< open CHANNEL >" -> "< ok >", "< rawmode >" ->
 // "< ok >", then, after rawmode_start_delay_ms (so the client's recv() of "< ok >" is not
-// coalesced with frames), one "< frame ID SEC.USEC DATA >\n" per send(). Any channel name is
-// accepted: there is one bus. "< send ID DLC B0 .. >" from a client (in rawmode, or in the BCM
+// coalesced with frames), one "\n< frame ID SEC.USEC DATA >" per send() (the newline before the
+// frame, not after it: socketcand_protocol.h says why). Any channel name is accepted: there is
+// one bus. "< send ID DLC B0 .. >" from a client (in rawmode, or in the BCM
 // mode that follows "open") is queued for receive(). "< echo >" is answered with "< echo >".
 //
 // Threads: the server runs one I/O thread (accept, read commands, flush backlogs). send() writes
@@ -15,6 +16,11 @@
 // client_backlog_bytes; a client whose backlog overflows is disconnected and counted (a slow
 // reader never stalls the emulator). send(), receive() and the accessors are thread-safe.
 // The destructor (or stop()) closes every connection and joins the thread.
+//
+// Handshake: a client that has not sent "< open CHANNEL >" within handshake_timeout_ms is closed
+// and counted, and when all max_clients slots are taken a new connection evicts the oldest
+// client still waiting for its "< open >" (idle or half-open connections never lock real clients
+// out); the new connection is refused only when every client has opened the bus.
 //
 // Errors: a port already in use (or any bind/listen failure) throws std::runtime_error naming
 // the address.
@@ -42,8 +48,10 @@ struct SocketcandServerOptions {
   std::string channel = "vcan0";                  // bus name, used in describe()
   std::size_t client_backlog_bytes = 256 * 1024;  // per client, beyond the kernel socket buffer
   std::size_t max_clients = 16;                   // further connections get an error and close
-  std::size_t receive_queue_frames = 4096;        // frames from clients; oldest dropped beyond
-  int rawmode_start_delay_ms = 100;               // pause between rawmode's "< ok >" and frames
+  int handshake_timeout_ms =
+      5000;  // a client must send "< open CHANNEL >" within this; <= 0: no limit
+  std::size_t receive_queue_frames = 4096;  // frames from clients; oldest dropped beyond
+  int rawmode_start_delay_ms = 100;         // pause between rawmode's "< ok >" and frames
   // Called (outside internal locks, from the I/O thread or a send() caller) for each counted
   // problem such as a dropped slow client. Default: a "warning: ..." line on stderr.
   std::function<void(const std::string&)> on_warning;
@@ -53,11 +61,12 @@ struct SocketcandServerStats {
   std::uint64_t frames_sent = 0;      // send() calls
   std::uint64_t frames_received = 0;  // frames from clients queued for receive()
   std::uint64_t clients_accepted = 0;
-  std::uint64_t clients_rejected = 0;         // over max_clients
-  std::uint64_t clients_dropped_slow = 0;     // backlog overflow
-  std::uint64_t clients_disconnected = 0;     // closed by the peer or a socket error
-  std::uint64_t protocol_errors = 0;          // malformed or unsupported commands
-  std::uint64_t receive_queue_overflows = 0;  // frames dropped because receive() lagged
+  std::uint64_t clients_rejected = 0;           // over max_clients, all of them past "< open >"
+  std::uint64_t clients_dropped_handshake = 0;  // no "< open >" in time, or evicted for a newer
+  std::uint64_t clients_dropped_slow = 0;       // backlog overflow
+  std::uint64_t clients_disconnected = 0;       // closed by the peer or a socket error
+  std::uint64_t protocol_errors = 0;            // malformed or unsupported commands
+  std::uint64_t receive_queue_overflows = 0;    // frames dropped because receive() lagged
 };
 
 class SocketcandServer final : public CanTransport {
@@ -93,6 +102,7 @@ class SocketcandServer final : public CanTransport {
   void wake();
   // all below run with mu_ held
   void accept_clients(std::vector<std::string>& warnings);
+  void expire_handshakes(std::vector<std::string>& warnings);
   void read_client(Client& c, std::vector<std::string>& warnings, bool& queued);
   void handle_element(Client& c, const std::string& element, std::vector<std::string>& warnings,
                       bool& queued);
@@ -100,6 +110,7 @@ class SocketcandServer final : public CanTransport {
   void flush_backlog(Client& c);
   void drop_client(Client& c, std::string_view why, std::vector<std::string>* warnings);
   void emit(const std::vector<std::string>& warnings) const;
+  std::string slow_reason() const;
 
   SocketcandServerOptions options_;
   net::HostPort bound_;

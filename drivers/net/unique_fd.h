@@ -1,6 +1,7 @@
 #pragma once
 // A file descriptor owned by one object and closed when it goes out of scope (move-only), and
 // errno as text. Shared by the UDP, TCP and CAN transports.
+#include <cerrno>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -38,9 +39,13 @@ class UniqueFd {
   int fd_ = -1;
 };
 
-// "Address already in use" for an errno value (thread-safe, unlike strerror).
+// "Address already in use" for an errno value (thread-safe, unlike strerror). A full disk says
+// so in words a user recognises: "No space left on device (ENOSPC: the disk is full)".
 inline std::string errno_text(int err) {
-  return std::error_code(err, std::generic_category()).message();
+  std::string text = std::error_code(err, std::generic_category()).message();
+  if (err == ENOSPC) text += " (ENOSPC: the disk is full)";
+  if (err == EDQUOT) text += " (EDQUOT: the disk quota is used up)";
+  return text;
 }
 
 }  // namespace sonarloop::net

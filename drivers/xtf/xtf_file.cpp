@@ -9,6 +9,9 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include "drivers/io/line_file.h"
+#include "drivers/net/unique_fd.h"
+
 namespace sonarloop::xtf {
 
 // ---------------------------------------------------------------------------------------------
@@ -171,7 +174,7 @@ XtfRawFile read_raw_packets(const std::string& path) {
 
 void XtfWriter::fail(const std::string& what, int err) {
   throw std::runtime_error("XTF file '" + path_ + "': " + what +
-                           (err ? std::string(": ") + std::strerror(err) : std::string()));
+                           (err ? std::string(": ") + net::errno_text(err) : std::string()));
 }
 
 XtfWriter::XtfWriter(const std::string& path, const XtfFileHeader& header, XtfWriterOptions options)
@@ -193,22 +196,11 @@ XtfWriter::~XtfWriter() {
 
 void XtfWriter::append(std::span<const std::uint8_t> bytes) {
   if (fd_ < 0) fail("write after close", 0);
-  // pwrite at the end of the whole packets written so far; on failure cut the file back there
-  std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::pwrite(fd_, bytes.data() + done, bytes.size() - done,
-                               static_cast<off_t>(bytes_written_ + done));
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int err = n < 0 ? errno : EIO;
-      if (::ftruncate(fd_, static_cast<off_t>(bytes_written_)) != 0) {
-        // the error reported below is the primary one
-      }
-      fail("write of " + std::to_string(bytes.size()) + " bytes at byte offset " +
-               std::to_string(bytes_written_) + " failed (file cut back to whole packets)",
-           err);
-    }
-    done += static_cast<std::size_t>(n);
+  // at the end of the whole packets written so far; on failure cut the file back there
+  if (const int err = io::append_whole(fd_, bytes_written_, bytes.data(), bytes.size())) {
+    fail("write of " + std::to_string(bytes.size()) + " bytes at byte offset " +
+             std::to_string(bytes_written_) + " failed (file cut back to whole packets)",
+         err);
   }
   bytes_written_ += bytes.size();
 }

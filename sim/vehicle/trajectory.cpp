@@ -30,7 +30,8 @@ double lag(double value0, double command, double dt_s, double tau_s) {
 
 }  // namespace
 
-Trajectory::Trajectory(const TrajectoryDesc& desc, const SeabedDepthFn& seabed_depth_m)
+Trajectory::Trajectory(const TrajectoryDesc& desc, const SeabedDepthFn& seabed_depth_m,
+                       const PlanProgressFn& progress)
     : desc_(desc), min_altitude_m_(kNaN) {
   std::vector<std::string> errors = validate(desc, "trajectory");
   if (desc.depth.mode == DepthMode::kAltitude && !seabed_depth_m) {
@@ -72,6 +73,7 @@ Trajectory::Trajectory(const TrajectoryDesc& desc, const SeabedDepthFn& seabed_d
   if (seabed_depth_m) {
     seabed_m_.resize(n_steps + 1 + 2 * pad_steps_);
     for (std::size_t k = 0; k < seabed_m_.size(); ++k) {
+      if (progress && k % kPlanProgressKnots == 0) progress(k, seabed_m_.size());
       const double s = origin_m + static_cast<double>(k) * knot_step_m_;
       const Vec2 p = horizontal_position(s, s / speed_m_s_);
       const double b = seabed_depth_m(p.x(), p.y());
@@ -83,6 +85,7 @@ Trajectory::Trajectory(const TrajectoryDesc& desc, const SeabedDepthFn& seabed_d
       }
       seabed_m_[k] = b;
     }
+    if (progress) progress(seabed_m_.size(), seabed_m_.size());
   }
 
   if (d.mode == DepthMode::kAltitude) {

@@ -36,6 +36,7 @@
 // the same speed; altitude is then unknown (NaN). In terrain following the depth profile is
 // also computed over a margin of the straight run-in and run-out (a few smoothing widths: so
 // that the smoothing has no end effects on the path) and held constant beyond it.
+#include <cstddef>
 #include <functional>
 #include <vector>
 
@@ -51,6 +52,12 @@ namespace sonarloop::vehicle {
 // Called only from Trajectory's constructor, on the constructing thread.
 using SeabedDepthFn = std::function<double(double north_m, double east_m)>;
 
+// Start-up progress of the seabed sampling along the path (knots done of total), called every
+// kPlanProgressKnots knots and once at the end, on the constructing thread. It may throw to
+// abandon the construction (the emulator does on a stop request); the exception propagates.
+using PlanProgressFn = std::function<void(std::size_t knots_done, std::size_t knots_total)>;
+inline constexpr std::size_t kPlanProgressKnots = 4096;
+
 inline constexpr double kStandardGravityMPerS2 = 9.80665;
 
 class Trajectory {
@@ -59,7 +66,9 @@ class Trajectory {
   // seabed in altitude mode, a non-finite seabed depth, a path too long for profile_step_m).
   // The seabed is sampled along the path every profile_step_m in both modes when given (for the
   // altitude in the state); it is required in altitude mode.
-  explicit Trajectory(const TrajectoryDesc& desc, const SeabedDepthFn& seabed_depth_m = {});
+  // A long path sampled finely can take minutes: `progress` (optional) reports it.
+  explicit Trajectory(const TrajectoryDesc& desc, const SeabedDepthFn& seabed_depth_m = {},
+                      const PlanProgressFn& progress = {});
 
   // The true state at time t (ns since the scenario epoch; the mission starts at t = 0).
   VehicleState state_at(SimTime t) const;

@@ -188,9 +188,9 @@ seabed:
     - {sediment: clay, centre_m: [0, -50], texture: {}}
 targets:
   - {type: cylinder, position_m: [5, 5], heading_deg: 30, material: aluminium, burial_m: 0.1}
-  - {type: box, name: crate, size_m: [1, 2, 0.5], material: {density_kg_m3: 900}}
+  - {type: box, name: crate, position_m: [0, 0], size_m: [1, 2, 0.5], material: {density_kg_m3: 900}}
   - {type: cylinder, scale: 2, position_m: [-100, 200]}
-  - {}
+  - {position_m: [1, 1]}
 )";
 
 }  // namespace
@@ -568,8 +568,10 @@ TEST_CASE("scene_loader: target names are unique") {
   // an explicit name may take a default name
   expect_error("targets:\n  - {name: manta-2}\n  - {type: manta}\n", "targets[1].name",
                {"the default name 'manta-2' is already used by targets[0]"});
-  const auto ok =
-      parse_scene("targets: [{type: box}, {type: rockan}, {type: box}, {name: x}]", "t.yaml");
+  const auto ok = parse_scene(
+      "targets: [{type: box, position_m: [0, 0]}, {type: rockan, position_m: [0, 1]}, "
+      "{type: box, position_m: [0, 2]}, {name: x, position_m: [0, 3]}]",
+      "t.yaml");
   REQUIRE(ok.targets.size() == 4);
   CHECK(ok.targets[0].name == "box-1");
   CHECK(ok.targets[1].name == "rockan-1");
@@ -581,8 +583,9 @@ TEST_CASE("scene_loader: size_m and scale, burial and position rules") {
   expect_error("targets:\n  - {size_m: [1, 1, 1], scale: 2}\n", "targets[0].scale",
                {"'2' is given together with size_m", "either size_m or scale, not both"});
   // burial up to the height: nominal, scaled and explicit sizes
-  CHECK(parse_scene("targets: [{type: manta, burial_m: 0.47}]", "b.yaml").targets[0].burial_m ==
-        0.47);
+  CHECK(parse_scene("targets: [{type: manta, position_m: [0, 0], burial_m: 0.47}]", "b.yaml")
+            .targets[0]
+            .burial_m == 0.47);
   expect_error("targets: [{type: manta, burial_m: 0.48}]", "targets[0].burial_m",
                {"0.48 is out of range", "0 .. 0.47 (the target's height)"});
   expect_error("targets: [{type: manta, scale: 0.5, burial_m: 0.3}]", "targets[0].burial_m",
@@ -869,8 +872,9 @@ class ScenarioGenerator {
     return v;
   }
   Vec2 vec2(YNode& m, const char* key, const Vec2& def, const std::array<Range, 2>& valid,
-            const Range& gen) {
-    if (valid[0].contains(def.x()) && valid[1].contains(def.y()) && chance(0.25)) return def;
+            const Range& gen, bool required = false) {
+    if (!required && valid[0].contains(def.x()) && valid[1].contains(def.y()) && chance(0.25))
+      return def;
     // bounded components are drawn from their valid range, unbounded ones from `gen`
     const Vec2 v(draw(std::isfinite(valid[0].lo) ? valid[0] : gen),
                  draw(std::isfinite(valid[1].lo) ? valid[1] : gen));
@@ -1062,7 +1066,7 @@ class ScenarioGenerator {
         t.name = std::string(buf);
         m.map.push_back({"name", scalar(t.name, YNode::Accepts::kText)});
       }
-      t.position_m = vec2(m, "position_m", t.position_m, inside, Range::any());
+      t.position_m = vec2(m, "position_m", t.position_m, inside, Range::any(), true);
       t.heading_deg = num(m, "heading_deg", t.heading_deg, Range::closed(0, 360));
       const Vec3 nominal = targets::target_type_info(t.type).size_m;
       const double mode = rng_.uniform();
@@ -1333,4 +1337,30 @@ TEST_CASE("scene_loader: random byte edits give a scene or a ConfigError, never 
   }
   CHECK(accepted > 0);
   CHECK(rejected > accepted);
+}
+
+TEST_CASE("scene_loader: issue 11, input that was silently accepted is refused") {
+  // a name with invalid UTF-8 made scene.json / truth.json invalid JSON
+  expect_error(
+      "name: \"ab\xff\xfe"
+      "c\"\n",
+      "name", {"is not valid UTF-8 (byte 0xFF at byte 2 of the text)", "allowed: text in UTF-8"});
+  expect_error("targets: [{position_m: [0, 0], name: \"\xc3\"}]\n", "targets[0].name",
+               {"is not valid UTF-8 (byte 0xC3 at byte 0"});
+  CHECK(parse_scene("name: \"caf\xc3\xa9 \xe2\x9a\x93\"\n", "u.yaml").name ==
+        "caf\xc3\xa9 \xe2\x9a\x93");
+  // an unclosed quote swallowed the next key: yaml-cpp folds it into the text "abc seed: 1 "
+  expect_error("name: \"abc\nseed: 1\n", "name",
+               {"closing quote is missing: it runs over 1 line to 'seed:' (line 2)",
+                "allowed: text with its closing quote on the same line"});
+  expect_error("seed: 3\nname: 'abc\n\n  seabed:\n", "name", {"runs over 2 lines to 'seabed:'"});
+  // a quoted text may still run over lines that are not keys, and hold a ':' on its own line
+  CHECK(parse_scene("name: \"abc\n  def\"\nseed: 2\n", "m.yaml").name == "abc def");
+  CHECK(parse_scene("name: \"a: b\"\nseed: 2\n", "m.yaml").name == "a: b");
+  CHECK(parse_scene("name: 'it''s: fine'\nseed: 2\n", "m.yaml").seed == 2);
+  // a target without position_m was put at the origin
+  expect_error(
+      "targets: [{type: manta}]\n", "targets[0].position_m",
+      {"is not set: every target needs its position",
+       "allowed: [north, east] in metres inside the seabed extent ([-50, 50] x [-50, 50])"});
 }

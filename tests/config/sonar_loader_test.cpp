@@ -511,6 +511,25 @@ TEST_CASE("sonar_loader: out-of-range values name the key, value and range") {
   CHECK_NOTHROW(parse_sonar("max_range_m: 1000\nbin_size_cm: 100\n", "e"));
 }
 
+TEST_CASE("sonar_loader: the ping period is at least the two-way travel time of the range") {
+  // issue 11: 1e-9 s was accepted ("1000000000.00 pings/s") and `run` never ended
+  expect_error("ping_period_s: 1e-9\n", "ping_period_s",
+               {"1e-09 s is shorter than the two-way travel time 2 max_range_m / c = 0.0666667 s "
+                "of max_range_m 50 (c = 1500 m/s)",
+                "allowed: 0 (auto: 2 max_range_m / c), or 0.0667 .. 10 for max_range_m 50"});
+  expect_error("max_range_m: 30\nping_period_s: 0.0399\n", "ping_period_s",
+               {"shorter than the two-way travel time", "0.04 .. 10 for max_range_m 30"});
+  // exactly the two-way time, 0 (auto) and longer periods are fine
+  CHECK(parse_sonar("max_range_m: 30\nping_period_s: 0.04\n", "p").ping_period_s == 0.04);
+  CHECK(parse_sonar("ping_period_s: 0\n", "p").ping_period_s == 0.0);
+  CHECK(parse_sonar("ping_period_s: 0.5\n", "p").ping_period_s == 0.5);
+  // the preset's period with a longer range set here: max_range_m is to blame
+  expect_error("preset: iver2_600khz\nmax_range_m: 100\n", "max_range_m",
+               {"100 has a two-way travel time 2 max_range_m / c = 0.133333 s, longer than "
+                "ping_period_s 0.1135",
+                "allowed: <= 85.125 for ping_period_s 0.1135; or ping_period_s 0 (auto)"});
+}
+
 TEST_CASE("sonar_loader: range bin below the maximum range, at most 65535 samples") {
   expect_error("max_range_m: 1\nbin_size_cm: 100\n", "bin_size_cm",
                {"100 is not below max_range_m 1", "allowed: below max_range_m (100 cm)"});
@@ -748,6 +767,7 @@ bool rules_hold(const render::SonarDesc& d) {
   if (!(d.bin_size_m < d.max_range_m)) return false;
   if (std::floor(d.max_range_m / d.bin_size_m + 1e-9) > 65535) return false;
   if (!(c / d.frequency_hz < d.array_length_m)) return false;
+  if (d.ping_period_s > 0 && d.ping_period_s < 2 * d.max_range_m / c * (1 - 1e-12)) return false;
   if (d.chirp_bandwidth_hz > 0) {
     if (!(d.chirp_bandwidth_hz < 2 * d.frequency_hz)) return false;
     if (c / (2 * d.chirp_bandwidth_hz) > 4 * d.bin_size_m) return false;

@@ -233,3 +233,54 @@ TEST_CASE("emulator --pose-from: pings follow the external pose and pause while 
   CHECK(truth.find(",external\n") != std::string::npos);
   CHECK(truth.find(",trajectory\n") == std::string::npos);
 }
+
+namespace {
+
+// A clock whose every reading is 10 s after the previous one: start-up looks very slow.
+class SlowStartClock final : public Clock {
+ public:
+  std::int64_t now_ns() const override { return t_ns_ += 10'000'000'000; }
+  std::int64_t utc_now_ns() const override { return now_ns(); }
+  std::int64_t process_cpu_ns() const override { return 0; }
+  void sleep_until(std::int64_t) override {}
+
+ private:
+  mutable std::int64_t t_ns_ = 0;
+};
+
+// The small scenario with a 1 km line sampled every 5 cm: 20,001 seabed points to plan on.
+config::Scenario long_line_scenario() {
+  config::Scenario sc = small_scenario();
+  sc.vehicle.trajectory.straight_length_m = 1000.0;
+  sc.vehicle.trajectory.depth.profile_step_m = 0.05;
+  return sc;
+}
+
+}  // namespace
+
+TEST_CASE("emulator: a long trajectory's start-up reports progress and honours a stop request") {
+  EmulatorOptions o;
+  o.rate = parse_rate("max");
+  o.threads = 1;
+  o.duration_s = 1.0;
+  o.stats_interval_s = 0;
+  std::vector<std::string> messages;
+  EmulatorHooks hooks;
+  hooks.message = [&](std::string_view m) { messages.emplace_back(m); };
+  SECTION("progress while the seabed is sampled along the path") {
+    SlowStartClock clock;
+    Emulator emu(long_line_scenario(), o, clock, hooks);
+    const auto progress = std::count_if(messages.begin(), messages.end(), [](const auto& m) {
+      return m.find("preparing: sampling the seabed along the vehicle's path") == 0 &&
+             m.find("of 20001 points; Ctrl-C stops)") != std::string::npos;
+    });
+    CHECK(progress >= 2);
+  }
+  SECTION("a stop request during the planning abandons the start-up") {
+    MonotonicClock clock;
+    int polls = 0;
+    hooks.stop_requested = [&] { return ++polls >= 3; };  // within the seabed sampling
+    CHECK_THROWS_AS(Emulator(long_line_scenario(), o, clock, hooks), StartupStopped);
+    CHECK(polls == 3);
+  }
+}

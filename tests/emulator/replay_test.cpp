@@ -1,5 +1,6 @@
 #include "emulator/replay.h"
 
+#include <algorithm>
 #include <atomic>
 #include <catch2/catch.hpp>
 #include <chrono>
@@ -188,6 +189,25 @@ TEST_CASE("xtf schedule: a backward or missing time continues after the fallback
   CHECK(s.fallback_pings == 3);
 }
 
+TEST_CASE("xtf schedule: a jump forward beyond kMaxPingGapNs is not waited for") {
+  // ping 2's year is corrupt (about 197 years late); ping 4 has invalid date fields
+  const std::int64_t years197_ms = 197LL * 365 * 24 * 3600 * 1000;
+  const std::vector<XtfPacketTime> p = {ping_at(0),   ping_at(100),          ping_at(years197_ms),
+                                        ping_at(300), ping_at(std::nullopt), ping_at(500)};
+  const XtfSchedule s = make_xtf_schedule(p);
+  CHECK(ms_of(s) == std::vector<std::int64_t>{0, 100, 200, 300, 400, 500});
+  CHECK(s.time_jumps == 1);
+  CHECK(s.first_time_jump == 2u);
+  CHECK(s.invalid_times == 1);
+  CHECK(s.first_invalid_time == 4u);
+  // a step of exactly the bound is still waited for
+  const std::int64_t gap_ms = kMaxPingGapNs / kMs;
+  const XtfSchedule ok = make_xtf_schedule(std::vector<XtfPacketTime>{
+      ping_at(0), ping_at(100), ping_at(100 + gap_ms), ping_at(200 + gap_ms)});
+  CHECK(ok.t_ns.back() == 200 * kMs + kMaxPingGapNs);
+  CHECK(ok.time_jumps == 0);
+}
+
 TEST_CASE("xtf schedule: SecondsPerPing is the fallback where set; without any time, 0.1 s") {
   const std::vector<XtfPacketTime> with_spp = {ping_at(0, 0.25), ping_at(0, 0.25),
                                                ping_at(0, 0.25)};
@@ -347,6 +367,42 @@ TEST_CASE("replay xtf: a stop request ends the replay after the current packet")
   CHECK(s.stopped);
   CHECK(s.packets_sent == 10);
   CHECK(pings == 10);
+}
+
+TEST_CASE("replay xtf: a ping with a corrupt year is paced by the ping period, with a warning") {
+  // issue 11: `replay --rate 10` of such a file waited ~197 years after the last good packet
+  TempDir dir("replay-corrupt-year");
+  std::vector<std::uint8_t> bytes = slurp(kRealXtf);
+  const XtfTimeline good = read_xtf_timeline(kRealXtf);
+  std::uint64_t corrupt_offset = 0;
+  std::size_t ping = 0;
+  for (std::size_t i = 0; i < good.packet_offsets.size(); ++i) {
+    if (bytes[good.packet_offsets[i] + 2] != xtf::kHeaderTypeSonar) continue;
+    if (ping++ != 200) continue;
+    corrupt_offset = good.packet_offsets[i];
+    const std::uint64_t year_at = corrupt_offset + 14;  // WORD Year (formats.md 1.5)
+    const unsigned year = bytes[year_at] | (bytes[year_at + 1] << 8);
+    const unsigned bad = year + 197;
+    bytes[year_at] = static_cast<std::uint8_t>(bad & 0xFF);
+    bytes[year_at + 1] = static_cast<std::uint8_t>(bad >> 8);
+    break;
+  }
+  REQUIRE(corrupt_offset > 0);
+  write_bytes(dir.file("corrupt.xtf"), bytes);
+  SimulatedClock clock;
+  std::vector<std::string> warnings;
+  ReplayOptions options;
+  options.rate.factor = 10.0;
+  options.on_warning = [&](const std::string& w) { warnings.push_back(w); };
+  const ReplaySummary s = replay_xtf(
+      dir.file("corrupt.xtf"), [](std::span<const std::uint8_t>) { return true; }, clock, options);
+  CHECK(s.pings_sent == kRealPings);
+  // as long as the good file, give or take the ping steps around the corrupt one
+  CHECK(s.wall_ns <= (52'230 + 1'000) * kMs / 10);
+  REQUIRE(warnings.size() == 1);
+  CHECK_THAT(warnings[0], Catch::Contains("byte offset " + std::to_string(corrupt_offset)) &&
+                              Catch::Contains("more than 60 s after the ping before it") &&
+                              Catch::Contains("paced by the ping period"));
 }
 
 TEST_CASE("replay xtf: packets too large for a datagram are skipped and reported") {
@@ -538,6 +594,36 @@ TEST_CASE("replay candump: a malformed line is an error with its line number, no
   CHECK(t.frames.empty());
   CHECK_THROWS_WITH(replay_candump(dir.file("missing.log"), transports, clock),
                     Catch::Contains("missing.log") && Catch::Contains("cannot open"));
+}
+
+TEST_CASE("replay candump: a last line torn by a crash is ignored with a warning") {
+  // issue 11: after SIGKILL nav.log ended mid-line and replay refused the whole log
+  TempDir dir("replay-candump-torn");
+  const TestLog log = make_test_log();
+  const std::size_t lines =
+      static_cast<std::size_t>(std::count(log.text.begin(), log.text.end(), '\n'));
+  // torn inside the data: it would even parse, as a shorter frame
+  write_text(dir.file("torn.log"), log.text + "(1700000000.000000) vcan0 09F80199#0102");
+  SimulatedClock clock;
+  RecordingTransport t(&clock);
+  can::CanTransport* transports[] = {&t};
+  std::vector<std::string> warnings;
+  ReplayOptions options;
+  options.rate.max = true;
+  options.on_warning = [&](const std::string& w) { warnings.push_back(w); };
+  const ReplaySummary s = replay_candump(dir.file("torn.log"), transports, clock, options);
+  CHECK(s.packets_sent == log.data_frames.size());
+  REQUIRE(t.frames.size() == log.data_frames.size());
+  CHECK(t.frames.back().frame == log.data_frames.back().frame);
+  const std::string torn_at =
+      "torn.log:" + std::to_string(lines + 1) + ": the last line has no newline";
+  CHECK(std::count_if(warnings.begin(), warnings.end(), [&](const std::string& w) {
+          return w.find(torn_at) != std::string::npos;
+        }) == 1);
+  // a malformed line that is not the last one is still an error
+  write_text(dir.file("mid.log"), "(1700000000.000000) vcan0 09F8#0G\n" + log.text);
+  CHECK_THROWS_WITH(replay_candump(dir.file("mid.log"), transports, clock),
+                    Catch::Contains("mid.log:1:"));
 }
 
 TEST_CASE("replay candump: python-can reads the replay from our socketcand server") {

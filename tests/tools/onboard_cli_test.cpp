@@ -237,6 +237,12 @@ TEST_CASE("onboard cli: usage errors") {
   CHECK(run(dir, "onboard --listen 127.0.0.1:0 --model " + dir.file("missing.slpca"), "u") == 1);
   CHECK_THAT(slurp(dir.file("u.err")), Catch::Contains("missing.slpca"));
   CHECK(run(dir, "run --contacts x.jsonl", "u") == 2);
+  // --stats-json into an unwritable place: refused at once, with the reason (issue 11)
+  CHECK(run(dir, "onboard --listen 127.0.0.1:0 --stats-json " + dir.file("no/dir/s.json"), "u") ==
+        1);
+  CHECK_THAT(slurp(dir.file("u.err")),
+             Catch::Contains("--stats-json " + dir.file("no/dir/s.json") +
+                             ": cannot write: No such file or directory"));
   CHECK(run(dir, "onboard --help", "u") == 0);
   CHECK_THAT(slurp(dir.file("u.out")), Catch::Contains("--listen") && Catch::Contains("examples"));
 }

@@ -1,5 +1,6 @@
 // End-to-end: the `sonarloop render` command as a user runs it.
 #include <catch2/catch.hpp>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -53,4 +54,21 @@ TEST_CASE("render cli: bad options are usage errors") {
   CHECK(run("render --out " + dir.file("x") + " --track 1,2:1,2") == 2);
   CHECK(run("render") == 2);
   CHECK(run("render " + dir.file("missing.yaml") + " --out " + dir.file("x")) == 1);
+}
+
+TEST_CASE("render cli: a track too long for memory is refused up front, naming the size") {
+  // issue 11: this said only "std::bad_alloc"
+  sonarloop::testing::TempDir dir("render-cli-huge");
+  const int rc =
+      sonarloop::testing::run_command(kBinary + " render --out " + dir.file("x") +
+                                      " --track -1e7,0:1e7,0 > /dev/null 2> " + dir.file("err"));
+  const std::string err = slurp(dir.file("err"));
+  INFO(err);
+  CHECK(rc == 2);
+  CHECK(err.find("--track -1e7,0:1e7,0: a line of 2e+07 m at 0.05 m per ping is 4e+08 pings") !=
+        std::string::npos);
+  CHECK(err.find("GiB of memory for the waterfall, more than the ") != std::string::npos);
+  CHECK(err.find("bad_alloc") == std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir.file("x")));
+  CHECK(run("render --out " + dir.file("y") + " --track 0,0:nan,1") == 2);
 }

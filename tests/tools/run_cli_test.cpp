@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <mutex>
@@ -329,6 +330,84 @@ TEST_CASE("run cli: SIGINT stops cleanly and leaves valid recordings") {
         std::string::npos);
 }
 
+TEST_CASE("run cli: a long start-up shows progress and SIGTERM stops it cleanly") {
+  // issue 11: very long trajectories spent minutes in start-up, silent, ignoring Ctrl-C. Here a
+  // 1000 km line sampled every 5 cm: 20 million seabed points to plan the depth on
+  testing::TempDir dir("run-cli-long-startup");
+  std::string y = testing::small_scenario_yaml();
+  y.replace(y.find("length_m: 50.0"), 14, "length_m: 1000000.0");
+  y.replace(y.find("depth: {mode: depth, depth_m: 14.0}"), 35,
+            "depth: {mode: depth, depth_m: 14.0, profile_step_m: 0.05}");
+  write_file(dir.file("long.yaml"), y);
+  const pid_t pid =
+      spawn({"run", dir.file("long.yaml"), "--record", dir.file("r")}, dir.file("err"));
+  const bool progress = wait_for_text(dir.file("err"), "preparing: sampling the seabed", 120);
+  kill(pid, SIGTERM);
+  const int rc = wait_exit(pid);
+  const std::string err = slurp(dir.file("err"));
+  INFO(err);
+  CHECK(progress);
+  CHECK(rc == 0);
+  CHECK(err.find("of 20000001 points; Ctrl-C stops)") != std::string::npos);
+  CHECK(err.find("sonarloop run: stopped during start-up (nothing sent) by SIGTERM") !=
+        std::string::npos);
+}
+
+TEST_CASE("run cli: after SIGKILL every recorded line is whole and replay reads nav.log") {
+  // issue 11: buffered writes left nav.log and truth.csv torn mid-line (or empty)
+  testing::TempDir dir("run-cli-sigkill");
+  write_file(dir.file("s.yaml"), testing::small_scenario_yaml());
+  const pid_t pid = spawn({"run", dir.file("s.yaml"), "--duration", "60", "--record", dir.file("r"),
+                           "--stats-every", "0"},
+                          dir.file("err"));
+  REQUIRE(wait_for_text(dir.file("err"), "running", 60));
+  std::this_thread::sleep_for(std::chrono::milliseconds(2000));
+  kill(pid, SIGKILL);
+  wait_exit(pid);
+  const std::string nav = slurp(dir.file("r/nav.log"));
+  const std::string truth = slurp(dir.file("r/truth.csv"));
+  REQUIRE(!nav.empty());
+  CHECK(nav.back() == '\n');
+  REQUIRE(!truth.empty());
+  CHECK(truth.back() == '\n');
+  // the packet and its truth row are two writes: SIGKILL may fall between them
+  const auto file = xtf::read_all_pings(dir.file("r/pings.xtf"));
+  CHECK(file.pings.size() > 0);
+  const std::size_t rows = count_lines(truth) - 1;
+  CHECK((rows == file.pings.size() || rows + 1 == file.pings.size()));
+  CHECK(
+      run("replay " + dir.file("r/nav.log") + " --can log:" + dir.file("copy.log") + " --rate max",
+          dir.file("replay.err")) == 0);
+  CHECK(slurp(dir.file("copy.log")).size() == nav.size());
+}
+
+TEST_CASE("run cli: a full disk under --record: the run goes on and says so, with statistics") {
+  // /dev/full fails every write with ENOSPC: nav.log on a full disk
+  testing::TempDir dir("run-cli-full-disk");
+  write_file(dir.file("s.yaml"), testing::small_scenario_yaml());
+  std::filesystem::create_directories(dir.file("r"));
+  std::filesystem::create_symlink("/dev/full", dir.file("r/nav.log"));
+  const int rc = run("run " + dir.file("s.yaml") + " --duration 2 --rate max --record " +
+                         dir.file("r") + " --stats-json " + dir.file("s.json"),
+                     dir.file("err"));
+  const std::string err = slurp(dir.file("err"));
+  INFO(err);
+  CHECK(rc == 1);
+  const std::string nav_log = dir.file("r/nav.log");
+  CHECK(err.find("warning: --record stopped: candump log " + nav_log) != std::string::npos);
+  CHECK(err.find("No space left on device (ENOSPC: the disk is full)") != std::string::npos);
+  // the final statistics, then the error
+  const auto stats_at = err.find("sonarloop run: done after ");
+  const auto error_at = err.find("sonarloop run: error: --record: candump log " + nav_log);
+  CHECK(stats_at != std::string::npos);
+  CHECK(error_at != std::string::npos);
+  CHECK(stats_at < error_at);
+  CHECK(slurp(dir.file("s.json")).find("\"sent\"") != std::string::npos);
+  // the other recordings stop there too, whole
+  CHECK_NOTHROW(xtf::read_all_pings(dir.file("r/pings.xtf")));
+  CHECK(slurp(dir.file("r/truth.csv")).back() == '\n');
+}
+
 TEST_CASE("run cli: bad input gets a clear error") {
   testing::TempDir dir("run-cli-bad");
   write_file(dir.file("s.yaml"), testing::small_scenario_yaml());
@@ -384,6 +463,37 @@ TEST_CASE("run cli: bad input gets a clear error") {
     CHECK(run("run " + s + " " + s) == 2);
     CHECK(run("run " + s + " --can nonsense:spec", dir.file("err")) == 1);
     CHECK(slurp(dir.file("err")).find("nonsense:spec") != std::string::npos);
+  }
+  SECTION("an absurd ping period, named with its allowed range") {
+    // issue 11: 1e-9 s was accepted and `run --duration 2` never ended
+    std::string y = testing::small_scenario_yaml();
+    y.replace(y.find("bin_size_cm: 5"), 14, "bin_size_cm: 5\n  ping_period_s: 1e-9");
+    write_file(dir.file("fast.yaml"), y);
+    CHECK(run("run " + dir.file("fast.yaml") + " --duration 2", dir.file("err")) == 1);
+    const std::string err = slurp(dir.file("err"));
+    INFO(err);
+    CHECK(err.find("sonar.ping_period_s: 1e-09 s is shorter than the two-way travel time") !=
+          std::string::npos);
+    CHECK(err.find("allowed: 0 (auto: 2 max_range_m / c), or 0.0267 .. 10 for max_range_m 20") !=
+          std::string::npos);
+  }
+  SECTION("--stats-every is checked with --quiet too") {
+    CHECK(run("run " + s + " --quiet --stats-every -1") == 2);
+    CHECK(run("run " + s + " --quiet --stats-every nan", dir.file("err")) == 2);
+    CHECK(slurp(dir.file("err")).find("'--stats-every': 'nan' is not a number") !=
+          std::string::npos);
+    CHECK(run("run " + s + " --stats-every inf") == 2);
+  }
+  SECTION("--stats-json into an unwritable place fails before the run, with the reason") {
+    CHECK(run("run " + s + " --stats-json " + dir.file("no/such/dir/s.json") + " --record " +
+                  dir.file("r"),
+              dir.file("err")) == 1);
+    const std::string err = slurp(dir.file("err"));
+    INFO(err);
+    CHECK(err.find("--stats-json " + dir.file("no/such/dir/s.json") +
+                   ": cannot write: No such file or directory") != std::string::npos);
+    CHECK(err.find("running") == std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(dir.file("r")));
   }
   SECTION("a missing scenario file") {
     CHECK(run("run " + dir.file("missing.yaml"), dir.file("err")) == 1);

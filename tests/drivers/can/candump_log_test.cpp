@@ -344,3 +344,21 @@ TEST_CASE("candump reader: a malformed line is an error naming the file and line
   }
   CHECK_THROWS_WITH(CandumpReader(dir.file("missing.log")), Catch::Contains("missing.log"));
 }
+
+TEST_CASE("candump log: a huge malformed line is quoted in part, not echoed whole") {
+  // issue 11: a 10 MB line was echoed whole to stderr
+  sonarloop::testing::TempDir dir("candump-huge-line");
+  const std::string line = "(1.000000) vcan0 123#" + std::string(10'000'000, 'A');
+  std::ofstream(dir.file("big.log")) << line << "\n";
+  sonarloop::can::CandumpReader reader(dir.file("big.log"), true);
+  try {
+    reader.next();
+    FAIL("a malformed line was accepted");
+  } catch (const std::runtime_error& e) {
+    const std::string msg = e.what();
+    CHECK(msg.size() < 600);
+    CHECK_THAT(msg, Catch::Contains("big.log:1: data 'AAAA") &&
+                        Catch::Contains("...' (10000000 characters)") &&
+                        Catch::Contains("...' (10000021 characters)"));
+  }
+}

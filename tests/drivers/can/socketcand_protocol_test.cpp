@@ -21,14 +21,14 @@ CanFrame nav_frame() {
 TEST_CASE("socketcand: frame and send elements are formatted as formats.md 4.4 shows") {
   char buf[128];
   const std::size_t n = format_socketcand_frame(nav_frame(), 1699999999123456789, buf, sizeof buf);
-  CHECK(std::string(buf, n) == "< frame 09F80123 1699999999.123456 00E6B523B1AC6A06 >\n");
+  CHECK(std::string(buf, n) == "\n< frame 09F80123 1699999999.123456 00E6B523B1AC6A06 >");
 
   CanFrame sff;
   sff.id = 0x7;
   sff.extended = false;
   sff.len = 0;
   format_socketcand_frame(sff, 5'000'000, buf, sizeof buf);
-  CHECK(std::string(buf) == "< frame 007 0.005000  >\n");
+  CHECK(std::string(buf) == "\n< frame 007 0.005000  >");
   CHECK(format_socketcand_frame(sff, 0, buf, 20) == 0);
 
   format_socketcand_send(nav_frame(), buf, sizeof buf);

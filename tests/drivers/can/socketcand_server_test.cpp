@@ -72,6 +72,17 @@ class RawClient {
     const ssize_t n = ::recv(fd_, buf, sizeof buf, 0);
     return n > 0 ? std::string(buf, static_cast<std::size_t>(n)) : std::string();
   }
+  // True when the server closes the connection within `ms` (anything it sends first is skipped).
+  bool closed_within(int ms) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
+    char buf[4096];
+    while (std::chrono::steady_clock::now() < until) {
+      pollfd p{fd_, POLLIN, 0};
+      if (::poll(&p, 1, 50) <= 0) continue;
+      if (::recv(fd_, buf, sizeof buf, 0) <= 0) return true;
+    }
+    return false;
+  }
   void handshake() {
     REQUIRE(get() == "< hi >");
     put("< open vcan0 >");
@@ -104,7 +115,7 @@ TEST_CASE("socketcand server: byte-exact handshake and frames for a bare TCP cli
   REQUIRE(wait_until([&] { return server.streaming_clients() == 1; }));
   CanFrame f = pattern(8).frame;
   server.send(f, 1699999999123456000);
-  CHECK(c.get() == "< frame 09F80108 1699999999.123456 38393A3B3C3D3E3F >\n");
+  CHECK(c.get() == "\n< frame 09F80108 1699999999.123456 38393A3B3C3D3E3F >");
   // python-can 4.1 style send with two elements in one segment
   c.put("< send 9F80123 2 0 e6 >< send 123 1 ff >");
   const auto r1 = server.receive(5000);
@@ -287,6 +298,64 @@ TEST_CASE("socketcand server: port in use, too many clients, shutdown") {
   CHECK_THROWS_WITH(first.receive(5000), Catch::Contains("closed"));
   CHECK_FALSE(first.connected());
   CHECK_FALSE(server.receive(-1).has_value());
+}
+
+TEST_CASE("socketcand server: idle connections that never open the bus do not lock clients out") {
+  std::vector<std::string> warnings;
+  std::mutex warnings_mu;
+  SocketcandServerOptions options;  // 16 clients, as in `run --can socketcand:...`
+  options.on_warning = [&](const std::string& w) {
+    std::lock_guard lock(warnings_mu);
+    warnings.push_back(w);
+  };
+  SocketcandServer server(kLoopbackAnyPort, options);
+  REQUIRE(options.max_clients == 16);
+  std::vector<std::unique_ptr<RawClient>> idle;
+  for (std::size_t i = 0; i < options.max_clients; ++i) {
+    idle.push_back(std::make_unique<RawClient>(server.bound_port()));
+    REQUIRE(idle.back()->get() == "< hi >");  // and then nothing, ever
+  }
+  REQUIRE(wait_until([&] { return server.connected_clients() == 16; }));
+  // a real client still gets in: the oldest idle connection makes room
+  SocketcandClient client(HostPort{"127.0.0.1", server.bound_port()});
+  REQUIRE(wait_until([&] { return server.streaming_clients() == 1; }));
+  CHECK(idle.front()->closed_within(5000));
+  server.send(pattern(4).frame, pattern(4).t_ns);
+  const auto got = client.receive_timed(5000);
+  REQUIRE(got);
+  CHECK(got->frame == pattern(4).frame);
+  const auto s = server.stats();
+  CHECK(s.clients_rejected == 0);
+  CHECK(s.clients_dropped_handshake == 1);
+  std::lock_guard lock(warnings_mu);
+  REQUIRE(warnings.size() == 1);
+  CHECK_THAT(warnings[0], Catch::Contains("evicted") && Catch::Contains("< open CHANNEL >"));
+}
+
+TEST_CASE("socketcand server: a client that never sends open is closed after the timeout") {
+  std::vector<std::string> warnings;
+  std::mutex warnings_mu;
+  SocketcandServerOptions options;
+  options.handshake_timeout_ms = 200;
+  options.rawmode_start_delay_ms = 0;
+  options.on_warning = [&](const std::string& w) {
+    std::lock_guard lock(warnings_mu);
+    warnings.push_back(w);
+  };
+  SocketcandServer server(kLoopbackAnyPort, options);
+  RawClient opened(server.bound_port());
+  opened.handshake();
+  RawClient idle(server.bound_port());
+  REQUIRE(idle.get() == "< hi >");
+  CHECK(idle.closed_within(20000));
+  REQUIRE(wait_until([&] { return server.stats().clients_dropped_handshake == 1; }));
+  // the client that opened the bus in time keeps streaming
+  CHECK(server.streaming_clients() == 1);
+  server.send(pattern(2).frame, 2'000);
+  CHECK(opened.get() == "\n< frame 09F80102 0.000002 0E0F >");
+  std::lock_guard lock(warnings_mu);
+  REQUIRE(warnings.size() == 1);
+  CHECK_THAT(warnings[0], Catch::Contains("no '< open CHANNEL >' within 200 ms"));
 }
 
 TEST_CASE("socketcand server: IPv6 loopback ::1") {

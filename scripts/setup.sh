@@ -4,7 +4,7 @@
 set -euo pipefail
 pkgs=(build-essential cmake ninja-build pkg-config
       libembree-dev libeigen3-dev libyaml-cpp-dev catch2 libpng-dev
-      can-utils python3-can python3-numpy python3-matplotlib iproute2)
+      can-utils python3-can python3-numpy python3-matplotlib python3-yaml iproute2)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -264,9 +264,9 @@ bool run_fusion_experiment(const atr::SweepExperiment& e, RunContext& ctx,
                            std::vector<atr::ConditionResult>& results) {
   const std::size_t classes = e.classes.size();
   for (const atr::RenderGroup& g : atr::render_groups(e)) {
-    const auto [train_h, train_s] = atr::fusion_specs(e, g, ctx.settings, false);
-    const auto [test_h, test_s] = atr::fusion_specs(e, g, ctx.settings, true);
-    const render::ChipRenderer rh(train_h), rs(train_s), th(test_h), ts(test_s);
+    const auto [train_hl, train_sh] = atr::fusion_specs(e, g, ctx.settings, false);
+    const auto [test_hl, test_sh] = atr::fusion_specs(e, g, ctx.settings, true);
+    const render::ChipRenderer rh(train_hl), rs(train_sh), th(test_hl), ts(test_sh);
     for (std::size_t slot = 0; slot < g.resolutions_m.size(); ++slot) {
       const auto& members = g.members[slot];
       const atr::SweepCondition& c0 = e.conditions[members.front()];

@@ -462,9 +462,11 @@ std::vector<std::string> builtin_sonar_names() {
 }
 
 SonarDesc builtin_sonar(std::string_view name) {
-  for (const auto& [preset, text] : builtin_sonar_presets()) {
-    if (preset != name) continue;
-    const std::string file = "config/sonars/" + preset + ".yaml (built in)";
+  for (const auto& entry : builtin_sonar_presets()) {
+    if (entry.first != name) continue;
+    const std::string file = "config/sonars/" + entry.first + ".yaml (built in)";
+    // (no structured binding: clang 14 cannot capture one in the lambda)
+    const auto& text = entry.second;
     return with_yaml_errors(
         file, [&] { return read_sonar_map(parse_document(text, file), Source::kBuiltin); });
   }

@@ -327,6 +327,11 @@ TEST_CASE("socketcand server: idle connections that never open the bus do not lo
   const auto s = server.stats();
   CHECK(s.clients_rejected == 0);
   CHECK(s.clients_dropped_handshake == 1);
+  // the server thread counts the eviction, then warns: wait for the warning
+  REQUIRE(wait_until([&] {
+    std::lock_guard lock(warnings_mu);
+    return !warnings.empty();
+  }));
   std::lock_guard lock(warnings_mu);
   REQUIRE(warnings.size() == 1);
   CHECK_THAT(warnings[0], Catch::Contains("evicted") && Catch::Contains("< open CHANNEL >"));
@@ -353,6 +358,11 @@ TEST_CASE("socketcand server: a client that never sends open is closed after the
   CHECK(server.streaming_clients() == 1);
   server.send(pattern(2).frame, 2'000);
   CHECK(opened.get() == "\n< frame 09F80102 0.000002 0E0F >");
+  // the server thread counts the drop, then warns: wait for the warning
+  REQUIRE(wait_until([&] {
+    std::lock_guard lock(warnings_mu);
+    return !warnings.empty();
+  }));
   std::lock_guard lock(warnings_mu);
   REQUIRE(warnings.size() == 1);
   CHECK_THAT(warnings[0], Catch::Contains("no '< open CHANNEL >' within 200 ms"));

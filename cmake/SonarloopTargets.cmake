@@ -7,6 +7,12 @@ function(sonarloop_target_defaults target)
   if(SONARLOOP_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
+  if(SONARLOOP_FUZZ)
+    # coverage for libFuzzer in every library, and the sanitizers that turn bugs into findings
+    target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link,address,undefined
+                                             -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+    target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
   if(SONARLOOP_SANITIZE)
     target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
                                              -fno-sanitize-recover=undefined)

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# Coverage-guided fuzzing of every parser that reads outside data (tests/fuzz/*_fuzz.cpp) with
+# libFuzzer, AddressSanitizer and UndefinedBehaviorSanitizer (clang from Debian).
+#
+# usage: scripts/fuzz.sh [SECONDS] [HARNESS ...]
+#   SECONDS   per harness (default 60); CI runs 10
+#   HARNESS   xtf_decode xtf_file candump_line socketcand n2k_decode pose_message model_file
+#             scenario_yaml stream_receiver png_chip (default: all)
+# Builds build-fuzz/ (clang, -DSONARLOOP_FUZZ=ON, only the harnesses and the libraries they
+# link), copies the seed corpus of tests/fuzz/corpus/NAME into build-fuzz/corpus/NAME (the
+# fuzzer grows it there, never in the source tree) and runs each harness with: inputs up to 64 KB
+# (1 MB for whole files), 1 s per input at most (a slower input is a hang), 2 GB of memory at
+# most. Prints per harness the executions and the coverage (edges, features); a crash, leak,
+# hang or memory overrun stops with its reproducer saved as build-fuzz/findings/NAME-*, and the
+# script exits 1. Reproduce one with: build-fuzz/tests/fuzz/fuzz_NAME build-fuzz/findings/FILE
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds="${1:-60}"
+shift || true
+all=(xtf_decode xtf_file candump_line socketcand n2k_decode pose_message model_file scenario_yaml
+     stream_receiver png_chip)
+harnesses=("$@")
+if [ ${#harnesses[@]} -eq 0 ]; then harnesses=("${all[@]}"); fi
+
+if ! command -v clang++ >/dev/null 2>&1; then
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  echo "fuzz: installing clang" >&2
+  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get update -qq
+  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends clang
+fi
+jobs="$(nproc 2>/dev/null || echo 2)"
+mkdir -p build-fuzz
+cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" \
+  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DSONARLOOP_FUZZ=ON \
+  -DSONARLOOP_BUILD_TESTS=OFF > build-fuzz/configure.log
+targets=()
+for h in "${harnesses[@]}"; do targets+=("fuzz_$h"); done
+cmake --build build-fuzz -j "$jobs" --target "${targets[@]}"
+
+mkdir -p build-fuzz/findings
+status=0
+printf '%-16s %12s %8s %8s  %s\n' harness executions edges features result
+for h in "${harnesses[@]}"; do
+  corpus="build-fuzz/corpus/$h"
+  mkdir -p "$corpus"
+  cp -n tests/fuzz/corpus/"$h"/* "$corpus"/ 2>/dev/null || true
+  max_len=65536
+  case "$h" in xtf_file | png_chip | scenario_yaml) max_len=1048576 ;; esac
+  log="build-fuzz/$h.log"
+  rc=0
+  ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 \
+    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    build-fuzz/tests/fuzz/fuzz_"$h" "$corpus" -max_total_time="$seconds" -timeout=1 \
+    -rss_limit_mb=2048 -max_len="$max_len" -print_final_stats=1 \
+    -artifact_prefix="build-fuzz/findings/$h-" > "$log" 2>&1 || rc=$?
+  execs="$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || true)"
+  cov="$(grep -o 'cov: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*' || true)"
+  ft="$(grep -o 'ft: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*' || true)"
+  if [ "$rc" -eq 0 ]; then
+    result=ok
+  else
+    result="FINDING (exit $rc): see $log and build-fuzz/findings/$h-*"
+    status=1
+  fi
+  printf '%-16s %12s %8s %8s  %s\n' "$h" "${execs:-?}" "${cov:-?}" "${ft:-?}" "$result"
+done
+exit "$status"

@@ -1,0 +1,16 @@
+// The PNG chip reader (atr/chip_folder.h, drivers/image/png.h) on a file holding the input.
+#include <exception>
+
+#include "atr/chip_folder.h"
+#include "tests/fuzz/fuzz_support.h"
+
+using namespace sonarloop;
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string& path = fuzz::write_input_file(data, size, ".png");
+  try {
+    (void)atr::read_chip_png(path);
+  } catch (const std::exception&) {
+  }
+  return 0;
+}

@@ -22,12 +22,18 @@ all=(xtf_decode xtf_file candump_line socketcand n2k_decode pose_message model_f
 harnesses=("$@")
 if [ ${#harnesses[@]} -eq 0 ]; then harnesses=("${all[@]}"); fi
 
-if ! command -v clang++ >/dev/null 2>&1; then
+# clang, and compiler-rt for libFuzzer's runtime (not pulled in without recommends)
+missing=()
+for p in clang libclang-rt-dev; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -ne 0 ]; then
   SUDO=""
   if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-  echo "fuzz: installing clang" >&2
+  echo "fuzz: installing ${missing[*]}" >&2
   $SUDO env DEBIAN_FRONTEND=noninteractive apt-get update -qq
-  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends clang
+  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
+    "${missing[@]}"
 fi
 jobs="$(nproc 2>/dev/null || echo 2)"
 mkdir -p build-fuzz

@@ -224,9 +224,9 @@ std::vector<float> cross_validated_distances(const Prepared& pr,
     if (train.size() < 2) continue;
     const ClassModel c = fit_class(pr, train, "fold", false, opt);
     for (const std::size_t h : held) {
-      x = pr.x.col(static_cast<Eigen::Index>(h)).cast<float>();
-      // a chip of an aspect sector with no training chip in this fold: not scored
+      // a fold whose training part left the class no subspace at all: nothing to score against
       if (c.subspaces.empty()) continue;
+      x = pr.x.col(static_cast<Eigen::Index>(h)).cast<float>();
       d.push_back(class_distance_of(c, x, work_n, work_p));
     }
   }

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -35,22 +35,40 @@ void skip_without_numpy() {
   }
 }
 
-// The values of `"key": number` in the script's JSON, in order (port then starboard).
-std::vector<double> values(const std::string& json, const std::string& key) {
-  const std::regex re("\"" + key + "\": (-?[0-9.eE+-]+|NaN)");
-  std::vector<double> out;
-  for (auto it = std::sregex_iterator(json.begin(), json.end(), re); it != std::sregex_iterator();
-       ++it)
-    out.push_back(std::strtod((*it)[1].str().c_str(), nullptr));
+// Where each `"key": ` occurs in the script's JSON, the text just after it, in order (port then
+// starboard). A plain scan: std::regex trips GCC 12's -Wmaybe-uninitialized under ASan.
+std::vector<const char*> after_key(const std::string& json, const std::string& key) {
+  const std::string needle = "\"" + key + "\": ";
+  std::vector<const char*> out;
+  for (std::size_t at = json.find(needle); at != std::string::npos;
+       at = json.find(needle, at + needle.size()))
+    out.push_back(json.c_str() + at + needle.size());
   return out;
 }
 
+// The values of `"key": number` (NaN for `NaN`); a key followed by something else is skipped.
+std::vector<double> values(const std::string& json, const std::string& key) {
+  std::vector<double> out;
+  for (const char* p : after_key(json, key)) {
+    if (std::strncmp(p, "NaN", 3) == 0) {
+      out.push_back(std::nan(""));
+      continue;
+    }
+    char* end = nullptr;
+    const double v = std::strtod(p, &end);
+    if (end != p) out.push_back(v);
+  }
+  return out;
+}
+
+// The values of `"key": "text"`.
 std::vector<std::string> words(const std::string& json, const std::string& key) {
-  const std::regex re("\"" + key + "\": \"([^\"]*)\"");
   std::vector<std::string> out;
-  for (auto it = std::sregex_iterator(json.begin(), json.end(), re); it != std::sregex_iterator();
-       ++it)
-    out.push_back((*it)[1].str());
+  for (const char* p : after_key(json, key)) {
+    if (*p != '"') continue;
+    const char* end = std::strchr(p + 1, '"');
+    if (end) out.emplace_back(p + 1, end);
+  }
   return out;
 }
 

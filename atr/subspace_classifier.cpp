@@ -189,13 +189,19 @@ ClassModel fit_class(const Prepared& pr, const std::vector<std::size_t>& cols,
   return cm;
 }
 
-// The class distance (the smallest over its subspaces) of a normalised chip.
-float class_distance_of(const ClassModel& c, const Eigen::VectorXf& x, Eigen::VectorXf& work_n,
-                        Eigen::VectorXf& work_p) {
+// The class distance of a normalised chip: the smallest eq. 10 residual over the class's
+// subspaces, and in *best_subspace the index of that subspace (-1 without any). work_p must hold
+// the largest rank. Used by Classifier and by the cross-validation.
+float nearest_subspace(const ClassModel& c, const Eigen::VectorXf& x, Eigen::VectorXf& work_n,
+                       Eigen::VectorXf& work_p, int* best_subspace) {
   float best = kInfinity;
-  for (const Subspace& s : c.subspaces) {
-    if (work_p.size() < s.rank()) work_p.resize(s.rank());
-    best = std::min(best, subspace_residual(s, x, work_n, work_p));
+  *best_subspace = -1;
+  for (std::size_t s = 0; s < c.subspaces.size(); ++s) {
+    const float d = subspace_residual(c.subspaces[s], x, work_n, work_p);
+    if (d < best) {
+      best = d;
+      *best_subspace = static_cast<int>(s);
+    }
   }
   return best;
 }
@@ -216,7 +222,8 @@ std::vector<float> cross_validated_distances(const Prepared& pr,
       std::min<std::size_t>(static_cast<std::size_t>(opt.reject_folds), cols.size());
   if (folds < 2) return {};
   std::vector<float> d;
-  Eigen::VectorXf x(pr.x.rows()), work_n(pr.x.rows()), work_p(1);
+  Eigen::VectorXf x(pr.x.rows()), work_n(pr.x.rows()), work_p(std::max(opt.p, 1));
+  int sub = -1;
   for (std::size_t f = 0; f < folds; ++f) {
     std::vector<std::size_t> train, held;
     for (std::size_t i = 0; i < cols.size(); ++i)
@@ -227,7 +234,7 @@ std::vector<float> cross_validated_distances(const Prepared& pr,
       // a fold whose training part left the class no subspace at all: nothing to score against
       if (c.subspaces.empty()) continue;
       x = pr.x.col(static_cast<Eigen::Index>(h)).cast<float>();
-      d.push_back(class_distance_of(c, x, work_n, work_p));
+      d.push_back(nearest_subspace(c, x, work_n, work_p, &sub));
     }
   }
   std::sort(d.begin(), d.end());
@@ -445,16 +452,7 @@ Classifier::Classifier(Model model) : model_(std::move(model)) {
 }
 
 float Classifier::class_distance(const ClassModel& c, int* best_subspace) {
-  float best = kInfinity;
-  *best_subspace = -1;
-  for (std::size_t s = 0; s < c.subspaces.size(); ++s) {
-    const float d = subspace_residual(c.subspaces[s], x_, work_n_, work_p_);
-    if (d < best) {
-      best = d;
-      *best_subspace = static_cast<int>(s);
-    }
-  }
-  return best;
+  return nearest_subspace(c, x_, work_n_, work_p_, best_subspace);
 }
 
 ChipCheck Classifier::classify(ChipView chip) {

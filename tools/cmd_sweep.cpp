@@ -123,6 +123,19 @@ struct Trial {
   std::size_t classified = 0;
 };
 
+// Renders the chips of one slot into labelled chips (returns false when stopped).
+bool render_labelled(const render::ChipRenderer& r, int slot, std::size_t count, RunContext& ctx,
+                     std::vector<atr::LabelledChip>& out, double* wall_s) {
+  const std::size_t got = render_slot(
+      r, slot, count, ctx.threads,
+      [&](const render::ChipImage& c) {
+        out.push_back(atr::labelled_chip(c));
+        ctx.bar->update(++ctx.chips_done);
+      },
+      wall_s);
+  return got == count;
+}
+
 void print_result(const atr::SweepExperiment& e, const atr::ConditionResult& r) {
   const atr::SweepCondition& c = e.conditions[r.condition];
   const auto& cm = r.confusion;
@@ -166,14 +179,10 @@ bool run_experiment(const atr::SweepExperiment& e, RunContext& ctx,
       std::vector<atr::LabelledChip> train;
       double wall_s = 0.0;
       const std::size_t n_train = static_cast<std::size_t>(g.train_count) * classes;
-      const std::size_t got = render_slot(
-          train_r, static_cast<int>(slot), n_train, ctx.threads,
-          [&](const render::ChipImage& c) {
-            train.push_back(atr::labelled_chip(c));
-            ctx.bar->update(++ctx.chips_done);
-          },
-          &wall_s);
-      if (got < n_train) return false;
+      if (!render_labelled(train_r, static_cast<int>(slot), n_train, ctx, train, &wall_s)) {
+        return false;
+      }
+      const std::size_t got = train.size();
       const double train_wall_s = wall_s;
 
       std::vector<Trial> trials;
@@ -242,19 +251,6 @@ bool run_experiment(const atr::SweepExperiment& e, RunContext& ctx,
     }
   }
   return true;
-}
-
-// Renders the chips of one slot into labelled chips (returns false when stopped).
-bool render_labelled(const render::ChipRenderer& r, int slot, std::size_t count, RunContext& ctx,
-                     std::vector<atr::LabelledChip>& out, double* wall_s) {
-  const std::size_t got = render_slot(
-      r, slot, count, ctx.threads,
-      [&](const render::ChipImage& c) {
-        out.push_back(atr::labelled_chip(c));
-        ctx.bar->update(++ctx.chips_done);
-      },
-      wall_s);
-  return got == count;
 }
 
 // The fusion experiment (atr/fusion.h): per resolution, a highlight model and a shadow model,

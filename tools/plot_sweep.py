@@ -218,6 +218,16 @@ def plot_ablation(rows, out_dir):
     plt.close(fig)
 
 
+def finish_percent_axis(ax, title, x_name, legend_size):
+    """Title, x label, a 0-based percentage y axis, grid and legend of one panel."""
+    ax.set_title(title, fontsize=9)
+    ax.set_xlabel(X_LABEL.get(x_name, x_name))
+    ax.set_ylabel("%")
+    ax.set_ylim(0, None)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=legend_size)
+
+
 def plot_overall(name, rows, out_dir, extra=()):
     """One panel of the overall error per series against x, then one panel per extra row class
     (e.g. open_set's unknown_accepted and false_reject): for experiments whose series are
@@ -233,12 +243,7 @@ def plot_overall(name, rows, out_dir, extra=()):
             x, y, lo, hi = curve(srows, kind, x_name)
             if x:
                 ax.errorbar(x, y, yerr=[lo, hi], marker="o", ms=3, capsize=2, label=series)
-        ax.set_title(f"{name}: {titles.get(kind, kind)}", fontsize=9)
-        ax.set_xlabel(X_LABEL.get(x_name, x_name))
-        ax.set_ylabel("%")
-        ax.set_ylim(0, None)
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=6)
+        finish_percent_axis(ax, f"{name}: {titles.get(kind, kind)}", x_name, 6)
     fig.tight_layout()
     fig.savefig(os.path.join(out_dir, f"{name}.png"), dpi=DPI)
     plt.close(fig)
@@ -314,12 +319,7 @@ def compare(out_png, specs):
                 tag = label if not series else f"{label}: {series}"
                 ax.errorbar(x, y, yerr=[lo, hi], marker="o", ms=3, capsize=2, label=tag)
         what = "mine / non-mine error" if cls == "mine_vs_non_mine" else "misidentification"
-        ax.set_title(f"{name}: {what}", fontsize=9)
-        ax.set_xlabel(X_LABEL.get(x_name, x_name))
-        ax.set_ylabel("%")
-        ax.set_ylim(0, None)
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
+        finish_percent_axis(ax, f"{name}: {what}", x_name, 7)
     fig.tight_layout()
     fig.savefig(out_png, dpi=DPI)
     plt.close(fig)

@@ -20,9 +20,11 @@
 //   latitude_deg, longitude_deg   the object's position (WGS84), when the stream gives
 //                    latitude/longitude (NavUnits 3); from the navigation of the pings around
 //                    the object (averaged), its side, its ground range and the pitch offset
-//   north_m, east_m  the same point in metres: in the local tangent plane whose origin is the
-//                    stream's first ping (latitude/longitude streams), or the stream's own
-//                    northing/easting (metre streams)
+//   north_m, east_m  the same point in metres: for latitude/longitude streams, in the local
+//                    tangent plane of the scenario's origin (OnboardOptions::frame_origin: the
+//                    frame of the scenario's scene.json and truth.json; `onboard --origin
+//                    first-ping`: the stream's first ping); for metre streams, the stream's own
+//                    northing/easting
 //   slant_range_m, ground_range_m   of the object's centre from the sonar at closest approach
 //   class            the identified class, null without a model
 //   mine_like        the mine / non-mine decision (Section 4.1.2), null without a model

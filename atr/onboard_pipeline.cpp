@@ -28,7 +28,7 @@ OnboardPipeline::OnboardPipeline(std::optional<Model> model, const OnboardOption
       sink_(std::move(sink)),
       receiver_(options.receiver,
                 [this](const xtf::XtfFileHeader& h, const xtf::XtfPing& p) { on_ping(h, p); }),
-      waterfall_(options.waterfall_pings),
+      waterfall_(options.waterfall_pings, options.frame_origin),
       detector_(options.detector) {
   if (!(options.position_window_m > 0.0)) {
     throw std::invalid_argument("position window must be > 0 m");

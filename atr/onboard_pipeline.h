@@ -48,6 +48,9 @@ struct OnboardOptions {
   // multi-look fusion (atr/look_fusion.h): a classified contact within this distance of an
   // object seen before is fused with it; 0 turns fusion off
   double look_radius_m = kDefaultLookRadius_m;
+  // origin of the contacts' north_m / east_m for latitude/longitude streams (a scenario's
+  // origin, so that contacts agree with its scene.json and truth.json); none: the first ping
+  std::optional<GeoPoint> frame_origin;
 };
 
 struct OnboardStats {

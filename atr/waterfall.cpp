@@ -29,11 +29,12 @@ double footprint_along_m(const PingRecord& r) {
   return r.along_m + a * std::tan(r.pitch_deg * kDegToRad);
 }
 
-Waterfall::Waterfall(int capacity) : capacity_(capacity) {
+Waterfall::Waterfall(int capacity, std::optional<GeoPoint> frame_origin) : capacity_(capacity) {
   if (capacity < 2) {
     throw std::invalid_argument("waterfall capacity " + std::to_string(capacity) +
                                 " pings: need at least 2");
   }
+  if (frame_origin) plane_ = std::make_unique<LocalTangentPlane>(*frame_origin);
 }
 
 std::optional<Waterfall::Layout> Waterfall::layout_of(const xtf::XtfFileHeader& header,
@@ -123,6 +124,7 @@ PingRecord Waterfall::make_record(const xtf::XtfFileHeader& header, const xtf::X
   r.time_utc_ns = xtf::time_utc_ns(h);
   if (header.nav_units == xtf::kNavUnitsLatLong) {
     if (!plane_) plane_ = std::make_unique<LocalTangentPlane>(GeoPoint{h.sensor_y, h.sensor_x});
+    geodetic_stream_ = true;
     const Vec2 ne = plane_->to_local(GeoPoint{h.sensor_y, h.sensor_x});
     r.north_m = ne.x();
     r.east_m = ne.y();
@@ -211,7 +213,8 @@ std::span<const float> Waterfall::levels(std::uint64_t seq, int side) const {
 }
 
 GeoPoint Waterfall::to_geodetic(double north_m, double east_m) const {
-  if (!plane_) throw std::logic_error("waterfall: the stream gives no latitude/longitude");
+  if (!geodetic_stream_)
+    throw std::logic_error("waterfall: the stream gives no latitude/longitude");
   return plane_->to_geodetic(north_m, east_m);
 }
 

@@ -19,8 +19,10 @@
 // Navigation per ping (XTF ping header, formats.md 1.5): SensorY/X (latitude/longitude when
 // NavUnits = 3, else northing/easting in metres), SensorHeading, SensorPitch (+ nose up),
 // SensorRoll, SensorPrimaryAltitude (0 = unknown -> NaN), SensorDepth, SensorSpeed (knots).
-// Positions are kept as north/east metres in a local tangent plane whose origin is the first
-// ping's position (sim/core/geodesy.h), and converted back for reports.
+// Positions are kept as north/east metres in a local tangent plane (sim/core/geodesy.h) whose
+// origin is the frame origin given at construction (the scenario's origin: then positions are
+// those of its scene.json and truth.json), else the first ping's position; converted back to
+// latitude/longitude for reports.
 //
 // Along-track coordinate. Each ping gets along_m, the distance the sonar has travelled, by dead
 // reckoning: along_k = along_(k-1) + speed_k · Δt_k, with Δt_k = (PingNumber difference) ×
@@ -55,7 +57,7 @@ struct PingRecord {
   std::uint64_t seq = 0;          // index of the ping in the waterfall (0, 1, ...)
   std::uint32_t ping_number = 0;  // XTF PingNumber
   std::optional<std::int64_t> time_utc_ns;
-  double north_m = 0.0;  // sonar position in the local plane (origin: the first ping)
+  double north_m = 0.0;  // sonar position in the local plane (origin: the frame origin)
   double east_m = 0.0;
   double along_m = 0.0;  // dead-reckoned distance travelled (see the header comment)
   double heading_deg = 0.0;
@@ -80,8 +82,11 @@ enum class AddResult {
 
 class Waterfall {
  public:
-  // Throws std::invalid_argument if capacity < 2.
-  explicit Waterfall(int capacity = kDefaultWaterfallPings);
+  // `frame_origin`: the origin of the local plane for latitude/longitude streams (a scenario's
+  // origin, so that positions agree with its scene.json and truth.json); without it, the
+  // stream's first ping. Throws std::invalid_argument if capacity < 2 or the origin is invalid.
+  explicit Waterfall(int capacity = kDefaultWaterfallPings,
+                     std::optional<GeoPoint> frame_origin = std::nullopt);
 
   AddResult add(const xtf::XtfFileHeader& header, const xtf::XtfPing& ping);
 
@@ -106,7 +111,7 @@ class Waterfall {
   double bin_centre_m(double k) const { return range_start_m_ + (k + 0.5) * bin_size_m_; }
 
   // Positions: geodetic when the stream gives latitude/longitude (NavUnits 3).
-  bool geodetic() const { return plane_ != nullptr; }
+  bool geodetic() const { return geodetic_stream_; }
   // Latitude/longitude of a local point (geodetic() only).
   GeoPoint to_geodetic(double north_m, double east_m) const;
   // A local point in the stream's own metres: the local plane itself for latitude/longitude
@@ -147,7 +152,8 @@ class Waterfall {
   std::vector<PingRecord> records_;  // capacity
   std::vector<float> table_;         // level of every integer sample value
   std::unique_ptr<LocalTangentPlane> plane_;
-  bool have_origin_ = false;  // metres navigation: origin of the local frame set
+  bool geodetic_stream_ = false;  // a latitude/longitude ping has come
+  bool have_origin_ = false;      // metres navigation: origin of the local frame set
   double origin_north_m_ = 0.0, origin_east_m_ = 0.0;
   bool have_last_ = false;
   PingRecord last_;  // the previous ping (dead reckoning)

@@ -3,7 +3,9 @@
 // and writes a contact report per object.
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <optional>
 #include <string>
@@ -19,6 +21,7 @@
 #include "tools/commands.h"
 #include "tools/onboard_output.h"
 #include "tools/output_file.h"
+#include "tools/scenario_source.h"
 
 namespace sonarloop::tools {
 namespace {
@@ -55,6 +58,35 @@ void feed_file(const std::string& path, atr::OnboardPipeline& pipeline, bool qui
     std::fprintf(stderr, "sonarloop onboard: read %llu packets from %s\n",
                  static_cast<unsigned long long>(reader.stats().packets), path.c_str());
   }
+}
+
+// The origin of the contacts' north_m / east_m: --origin LAT,LON, --origin first-ping, or the
+// origin of --scenario FILE (default: the embedded default scenario, as `run` flies).
+std::optional<GeoPoint> frame_origin(const Args& args) {
+  const auto origin = args.get("--origin");
+  if (origin && args.has("--scenario")) throw UsageError("give --origin or --scenario, not both");
+  if (origin) {
+    if (*origin == "first-ping") return std::nullopt;
+    const auto comma = origin->find(',');
+    char* end_lat = nullptr;
+    char* end_lon = nullptr;
+    const std::string lat_text = origin->substr(0, comma);
+    const std::string lon_text = comma == std::string::npos ? "" : origin->substr(comma + 1);
+    const double lat = std::strtod(lat_text.c_str(), &end_lat);
+    const double lon = std::strtod(lon_text.c_str(), &end_lon);
+    const bool ok = comma != std::string::npos && !lat_text.empty() && !lon_text.empty() &&
+                    *end_lat == '\0' && *end_lon == '\0' && std::isfinite(lat) &&
+                    std::isfinite(lon) && std::fabs(lat) <= kMaxOriginLatitudeDeg &&
+                    std::fabs(lon) <= 180.0;
+    if (!ok) {
+      throw UsageError("--origin: expected LAT,LON in degrees (|LAT| <= " +
+                       std::to_string(static_cast<int>(kMaxOriginLatitudeDeg)) +
+                       ", |LON| <= 180) or first-ping, got '" + *origin + "'");
+    }
+    return GeoPoint{lat, lon};
+  }
+  const scene::SceneDesc scene = load_scene_or_default(args.get("--scenario"));
+  return GeoPoint{scene.origin.latitude_deg, scene.origin.longitude_deg};
 }
 
 struct ListenOptions {
@@ -127,6 +159,8 @@ int run_onboard(const std::vector<std::string>& argv) {
                          {"--search-cols"},
                          {"--stats-json"},
                          {"--look-radius"},
+                         {"--origin"},
+                         {"--scenario"},
                          {"--quiet", false}});
   if (!args.positionals().empty()) {
     throw UsageError("unexpected argument '" + args.positionals()[0] + "'");
@@ -159,6 +193,7 @@ int run_onboard(const std::vector<std::string>& argv) {
       static_cast<int>(args.get_int("--search-cols", 0, 100).value_or(options.search.cols));
   options.look_radius_m =
       args.get_double("--look-radius", 0.0, 100.0).value_or(options.look_radius_m);
+  options.frame_origin = frame_origin(args);
   const auto stats_json = args.get("--stats-json");
   // opened now: an unwritable place fails before the run, not after it
   std::optional<OutputFile> stats_json_file;
@@ -215,9 +250,10 @@ UDP datagram), or reads a recorded .xtf file, and runs the onboard chain on it:
   classify   chips cut as `sonarloop dataset` cuts them (3 m x 3 m, pixels of the model's
              resolution, one ping per row resampled along track with the navigation and
              pitch), classified by the PCA model of `sonarloop train` at the best alignment
-  report     one JSON line per contact: time, ping, latitude/longitude of the object, class,
-             mine / non-mine, the distance to every class, and for an object seen before the
-             decision fused over its looks (atr/look_fusion.h)
+  report     one JSON line per contact: time, ping, latitude/longitude of the object and its
+             north/east metres from the scenario's origin (the frame of the scenario's
+             scene.json and truth.json), class, mine / non-mine, the distance to every class,
+             and for an object seen before the decision fused over its looks (atr/look_fusion.h)
 Contacts go to stdout (or --contacts FILE) as they are found; statistics go to stderr at the
 end. Without --model the objects are reported unclassified. With --listen, Ctrl-C stops
 cleanly (objects still open are reported).
@@ -236,6 +272,10 @@ options:
   --look-radius M        multi-look fusion: a classified object within M metres of one seen
                          before (another pass or aspect) is fused with it, and its report adds
                          looks, object, fused_class and fused_mine_like (default 2; 0: off)
+  --scenario FILE        the scenario flown (YAML; default: the embedded default scenario):
+                         its origin is the origin of the contacts' north_m / east_m
+  --origin LAT,LON       that origin given directly, in degrees; `--origin first-ping`: the
+                         stream's first ping (for recordings of no scenario, e.g. real data)
   --stats-json FILE      write the final statistics as JSON
   --quiet                no start-up lines (warnings and the final statistics still print)
 
@@ -244,6 +284,7 @@ examples:
   sonarloop onboard --listen 127.0.0.1:5600 --model out/atr.slpca --contacts out/contacts.jsonl &
   sonarloop run --udp 127.0.0.1:5600 --rate 4
   sonarloop onboard --xtf out/run/pings.xtf --model out/atr.slpca
+  sonarloop onboard --xtf survey.xtf --model real.slpca --origin first-ping
 )",
     run_onboard, 15};
 SONARLOOP_REGISTER_COMMAND(kOnboardCommand);

@@ -198,9 +198,12 @@ int run_run(const std::vector<std::string>& argv) {
   }
   emulator::Emulator& emu = *emu_holder;
   if (model) {
-    onboard = std::make_unique<InProcessOnboard>(std::move(*model), args.get("--contacts"),
-                                                 xtf::encode_file_header(emu.file_header()),
-                                                 emu.packet_bytes(), o.rate.max);
+    atr::OnboardOptions onboard_options;  // contacts in the scenario's frame
+    onboard_options.frame_origin =
+        GeoPoint{scenario.scene.origin.latitude_deg, scenario.scene.origin.longitude_deg};
+    onboard = std::make_unique<InProcessOnboard>(
+        std::move(*model), onboard_options, args.get("--contacts"),
+        xtf::encode_file_header(emu.file_header()), emu.packet_bytes(), o.rate.max);
     if (!quiet) {
       std::fprintf(stderr, "onboard: classifying with %s, contacts to %s\n", classify->c_str(),
                    onboard->contacts_destination().c_str());

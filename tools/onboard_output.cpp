@@ -133,13 +133,12 @@ std::string onboard_stats_json(const atr::OnboardStats& s, const atr::PacketQueu
   return w.str();
 }
 
-InProcessOnboard::InProcessOnboard(atr::Model model,
+InProcessOnboard::InProcessOnboard(atr::Model model, const atr::OnboardOptions& options,
                                    const std::optional<std::string>& contacts_path,
                                    std::span<const std::uint8_t> file_header,
                                    std::size_t packet_bytes, bool lossless)
     : contacts_(contacts_path, stderr),
-      pipeline_(std::move(model), atr::OnboardOptions{},
-                [this](const atr::Contact& c) { contacts_.write(c); }),
+      pipeline_(std::move(model), options, [this](const atr::Contact& c) { contacts_.write(c); }),
       queue_(kInProcessQueueSlots, std::max(packet_bytes, file_header.size())),
       lossless_(lossless) {
   queue_.push(file_header, true);

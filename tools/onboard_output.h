@@ -53,7 +53,8 @@ std::string onboard_stats_json(const atr::OnboardStats& s, const atr::PacketQueu
 class InProcessOnboard {
  public:
   // Starts the consumer thread; feeds `file_header` (the emulator's XTF file header) first.
-  InProcessOnboard(atr::Model model, const std::optional<std::string>& contacts_path,
+  InProcessOnboard(atr::Model model, const atr::OnboardOptions& options,
+                   const std::optional<std::string>& contacts_path,
                    std::span<const std::uint8_t> file_header, std::size_t packet_bytes,
                    bool lossless);
   ~InProcessOnboard();

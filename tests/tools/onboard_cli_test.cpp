@@ -64,7 +64,8 @@ std::optional<std::string> json_value(const std::string& line, const std::string
 }
 
 struct Contact {
-  Vec2 ne_m = Vec2::Zero();  // from latitude/longitude, in the scenario's plane
+  Vec2 ne_m = Vec2::Zero();           // from latitude/longitude, in the scenario's plane
+  Vec2 reported_ne_m = Vec2::Zero();  // its north_m / east_m
   std::string cls;
   bool mine_like = false;
 };
@@ -80,6 +81,11 @@ std::vector<Contact> read_contacts(const std::string& path, const LocalTangentPl
     REQUIRE(lon);
     Contact c;
     c.ne_m = plane.to_local(GeoPoint{std::stod(*lat), std::stod(*lon)});
+    const auto north = json_value(line, "north_m");
+    const auto east = json_value(line, "east_m");
+    REQUIRE(north);
+    REQUIRE(east);
+    c.reported_ne_m = Vec2(std::stod(*north), std::stod(*east));
     c.cls = json_value(line, "class").value_or("");
     c.mine_like = json_value(line, "mine_like").value_or("") == "true";
     out.push_back(c);
@@ -171,6 +177,10 @@ TEST_CASE("onboard cli: the default scenario's four targets, in-process, over UD
                           Catch::Contains("ms per chip"));
   const std::vector<Contact> c1 = read_contacts(inproc, plane);
   const int false1 = check_against_truth(c1, sc);
+  // north_m / east_m are in the scenario's frame (that of scene.json and truth.json): they
+  // agree with the latitude/longitude to the rounding of the report (issue 10 §5)
+  for (const Contact& c : c1)
+    CHECK((c.reported_ne_m - c.ne_m).norm() < 0.01);
   WARN("run --classify: " << c1.size() << " contacts, " << false1 << " false");
   CHECK(false1 <= kMaxFalseContacts);
 
@@ -181,6 +191,21 @@ TEST_CASE("onboard cli: the default scenario's four targets, in-process, over UD
                   from_file,
               "file") == 0);
   CHECK(slurp(from_file) == slurp(inproc));
+  // --origin first-ping: the frame of recordings of no scenario. The default scenario's vehicle
+  // starts at (-45, 0) (config/default.yaml), so every contact moves by the same offset, about
+  // 45 m north (the first ping's navigation noise aside)
+  const std::string first_ping = dir.file("first_ping.jsonl");
+  REQUIRE(run(dir,
+              "onboard --xtf " + dir.file("rec") + "/pings.xtf --model " + model +
+                  " --origin first-ping --contacts " + first_ping,
+              "first_ping") == 0);
+  const std::vector<Contact> c2 = read_contacts(first_ping, plane);
+  REQUIRE(c2.size() == c1.size());
+  REQUIRE_FALSE(c1.empty());
+  const Vec2 offset = c2[0].reported_ne_m - c1[0].reported_ne_m;
+  CHECK((offset - Vec2(45.0, 0.0)).norm() < 1.0);
+  for (std::size_t i = 0; i < c2.size(); ++i)
+    CHECK((c2[i].reported_ne_m - c1[i].reported_ne_m - offset).norm() < 0.02);
 
   // 3. over UDP on 127.0.0.1: onboard --listen, the emulator at 2x real time (with --rate
   // max's epoch, so that the ping times, and so the contacts, can be compared). 2x, not more,
@@ -237,6 +262,9 @@ TEST_CASE("onboard cli: usage errors") {
   CHECK(run(dir, "onboard --listen 127.0.0.1:0 --model " + dir.file("missing.slpca"), "u") == 1);
   CHECK_THAT(slurp(dir.file("u.err")), Catch::Contains("missing.slpca"));
   CHECK(run(dir, "run --contacts x.jsonl", "u") == 2);
+  CHECK(run(dir, "onboard --xtf x.xtf --origin 91,0", "u") == 2);
+  CHECK_THAT(slurp(dir.file("u.err")), Catch::Contains("--origin: expected LAT,LON"));
+  CHECK(run(dir, "onboard --xtf x.xtf --origin 1,2 --scenario x.yaml", "u") == 2);
   // --stats-json into an unwritable place: refused at once, with the reason (issue 11)
   CHECK(run(dir, "onboard --listen 127.0.0.1:0 --stats-json " + dir.file("no/dir/s.json"), "u") ==
         1);

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Configure and build sonarloop. Usage: scripts/build.sh [BUILD_DIR] [extra cmake args...]
+# Configure and build sonarloop (Release). Usage: scripts/build.sh [BUILD_DIR] [extra cmake args...]
+# Builds what the main job needs, the `sonarloop` binary; scripts/test.sh builds everything
+# (SONARLOOP_BUILD_ALL=1: every library, tool and test).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh"
@@ -12,4 +14,6 @@ if [ ! -f "$dir/CMakeCache.txt" ]; then
 else
   cmake -S "$root" -B "$dir" "$@" >/dev/null
 fi
-cmake --build "$dir" -j "$(nproc)"
+target=(--target sonarloop)
+if [ "${SONARLOOP_BUILD_ALL:-0}" = 1 ]; then target=(); fi
+cmake --build "$dir" -j "$(nproc)" "${target[@]}"

@@ -161,6 +161,9 @@ void Emulator::Impl::configure() {
     throw std::invalid_argument("--duration must be > 0 s");
   }
   if (!(options.stale_after_s > 0.0)) throw std::invalid_argument("--stale-after must be > 0 s");
+  if (!(options.pose_delay_s >= 0.0 && options.pose_delay_s <= options.stale_after_s)) {
+    throw std::invalid_argument("--pose-delay must be >= 0 s and at most --stale-after");
+  }
   if (options.pose_from && options.rate.max) {
     throw std::invalid_argument(
         "--pose-from needs a paced rate (realtime or a factor): with --rate max there is no "
@@ -300,6 +303,7 @@ void Emulator::Impl::open_outputs() {
   ps.pose_source = pose_source.get();
   ps.pacer = &pacer;
   ps.stale_after_ns = from_seconds(options.stale_after_s);
+  ps.pose_delay_ns = from_seconds(options.pose_delay_s);
   producer = std::make_unique<ScenePingProducer>(ps);
   queue =
       std::make_unique<RenderQueue>(*producer, options.ring_slots, options.threads, packet_bytes);
@@ -335,7 +339,9 @@ void Emulator::Impl::publish_nav(const NavSchedule::Sample& sample) {
   vehicle::NavSolution solution;
   solution.t = t;
   if (pose_source) {
-    const std::optional<ExternalPose> ext = pose_source->latest();
+    // as the pings: the pose of the sample's own time less the delay
+    const std::optional<ExternalPose> ext = pose_source->pose_at(
+        pacer.wall_of(t) - from_seconds(options.pose_delay_s), from_seconds(options.stale_after_s));
     const std::int64_t age = ext ? clock.now_ns() - ext->received_ns : -1;
     if (!ext || age > from_seconds(options.stale_after_s)) {
       // no pose to publish: only what does not depend on it
@@ -410,6 +416,7 @@ void Emulator::Impl::publish_ping(const PingSlot& slot, std::int64_t k) {
     stats.udp_bytes += packet.size();
   }
   if (hooks.on_ping) hooks.on_ping(packet);
+  if (slot.truth.pose_extrapolated) ++stats.pings_extrapolated;
   if (pacer.paced()) {
     const std::int64_t sent = clock.now_ns();
     const std::int64_t lateness = sent - pacer.wall_of(slot.truth.t + send_delay);
@@ -636,8 +643,11 @@ std::vector<std::string> Emulator::describe_outputs() const {
     out.push_back("record: " + impl_->recording->dir() + "/{pings.xtf, nav.log, truth.csv}");
   }
   if (impl_->pose_source) {
-    std::snprintf(buf, sizeof buf, "pose from %s (stale after %.3g s)",
-                  impl_->pose_source->describe().c_str(), impl_->options.stale_after_s);
+    std::snprintf(buf, sizeof buf,
+                  "pose from %s (pings at the pose of their time less %.3g s; "
+                  "stale after %.3g s)",
+                  impl_->pose_source->describe().c_str(), impl_->options.pose_delay_s,
+                  impl_->options.stale_after_s);
     out.emplace_back(buf);
   }
   return out;

@@ -73,6 +73,7 @@ struct EmulatorOptions {
   int threads = 1;  // render workers
   std::optional<std::string> pose_from;
   double stale_after_s = 2.0;
+  double pose_delay_s = 0.1;  // --pose-delay: pings at the pose of their time less this
   std::optional<std::int64_t> epoch_utc_ns;
   double stats_interval_s = 5.0;  // live statistics every this many wall seconds (0: never)
   render::RendererKind renderer = render::RendererKind::kProfile;  // --renderer

@@ -129,7 +129,10 @@ void ScenePingProducer::produce(std::int64_t k, int worker, PingSlot& slot) {
       return;
     }
     const std::int64_t now = setup_.clock->now_ns();
-    const std::optional<ExternalPose> ext = setup_.pose_source->latest();
+    // the pose of the ping's own time (less the delay), not the latest sample as it is
+    const std::int64_t tau = setup_.pacer->wall_of(t) - setup_.pose_delay_ns;
+    const std::optional<ExternalPose> ext =
+        setup_.pose_source->pose_at(tau, setup_.stale_after_ns, &truth.pose_extrapolated);
     truth.external = true;
     truth.pose_age_ns = ext ? now - ext->received_ns : -1;
     if (!ext || truth.pose_age_ns > setup_.stale_after_ns) {

@@ -55,6 +55,8 @@ struct PingProducerSetup {
   const PoseSource* pose_source = nullptr;
   const Pacer* pacer = nullptr;
   SimTime stale_after_ns = 2 * kNanosecondsPerSecond;
+  // each ping at the pose of (its due time - pose_delay_ns), emulator/pose_history.h
+  SimTime pose_delay_ns = kNanosecondsPerSecond / 10;
 };
 
 class ScenePingProducer final : public PingProducer {

@@ -32,11 +32,6 @@ void default_warning(const std::string& text) {
   std::fprintf(stderr, "warning: %s\n", text.c_str());
 }
 
-double wrap_two_pi(double a) {
-  const double r = std::fmod(a, 2.0 * std::numbers::pi);
-  return r < 0.0 ? r + 2.0 * std::numbers::pi : r;
-}
-
 }  // namespace
 
 PoseSource::~PoseSource() = default;
@@ -86,6 +81,7 @@ bool PoseMerger::merge_n2k(const can::CanFrame& frame) {
     pose_.pose.position_W.x() = ne.x();
     pose_.pose.position_W.y() = ne.y();
     pose_.has_position = true;
+    position_.add(t, {ne.x(), ne.y()});
     pose_.received_ns = t;
     any_ = true;
     ++stats_.updates;
@@ -107,6 +103,7 @@ bool PoseMerger::merge_n2k(const can::CanFrame& frame) {
     std::lock_guard lock(mu_);
     pose_.pose.yaw = wrap_two_pi(yaw);
     pose_.has_heading = true;
+    heading_.add(t, {pose_.pose.yaw});
     pose_.received_ns = t;
     any_ = true;
     ++stats_.updates;
@@ -123,6 +120,7 @@ bool PoseMerger::merge_n2k(const can::CanFrame& frame) {
     pose_.pose.pitch = *m->pitch_rad;
     pose_.pose.roll = *m->roll_rad;
     pose_.has_attitude = true;
+    attitude_.add(t, {pose_.pose.pitch, pose_.pose.roll});
     pose_.received_ns = t;
     any_ = true;
     ++stats_.updates;
@@ -138,6 +136,16 @@ bool PoseMerger::merge_n2k(const can::CanFrame& frame) {
     // vehicle below the field's 32.764 m must not keep its last shallower depth)
     pose_.has_depth = m->offset_m && *m->offset_m >= 0.0;
     if (pose_.has_depth) pose_.pose.position_W.z() = *m->offset_m;
+    if (pose_.has_depth) {
+      depth_.add(t, {pose_.pose.position_W.z()});
+    } else {
+      depth_.clear();
+    }
+    if (std::isnan(pose_.altitude_m)) {
+      altitude_.clear();
+    } else {
+      altitude_.add(t, {pose_.altitude_m});
+    }
     pose_.received_ns = t;
     any_ = true;
     ++stats_.updates;
@@ -188,6 +196,8 @@ bool PoseMerger::merge_pose_datagram(std::span<const std::uint8_t> datagram) {
   last_sequence_ = m->sequence;
   p.received_ns = t;
   pose_ = p;
+  // the sample's time: the sender's stamp on our clock, else its arrival
+  record_snapshot_locked(m->time_unix_ns != 0 ? stamps_.place(m->time_unix_ns, t) : t);
   any_ = true;
   ++stats_.updates;
   return true;
@@ -208,6 +218,58 @@ std::optional<ExternalPose> PoseMerger::latest() const {
   std::lock_guard lock(mu_);
   if (!any_) return std::nullopt;
   return pose_;
+}
+
+void PoseMerger::record_snapshot_locked(std::int64_t t_ns) {
+  const Pose& q = pose_.pose;
+  if (pose_.has_position) {
+    position_.add(t_ns, {q.position_W.x(), q.position_W.y()});
+  } else {
+    position_.clear();
+  }
+  if (pose_.has_heading) {
+    heading_.add(t_ns, {q.yaw});
+  } else {
+    heading_.clear();
+  }
+  if (pose_.has_attitude) {
+    attitude_.add(t_ns, {q.pitch, q.roll});
+  } else {
+    attitude_.clear();
+  }
+  if (pose_.has_depth) {
+    depth_.add(t_ns, {q.position_W.z()});
+  } else {
+    depth_.clear();
+  }
+  if (std::isnan(pose_.altitude_m)) {
+    altitude_.clear();
+  } else {
+    altitude_.add(t_ns, {pose_.altitude_m});
+  }
+}
+
+std::optional<ExternalPose> PoseMerger::pose_at(std::int64_t tau_ns,
+                                                std::int64_t max_extrapolation_ns,
+                                                bool* extrapolated) const {
+  std::lock_guard lock(mu_);
+  if (extrapolated) *extrapolated = false;
+  if (!any_) return std::nullopt;
+  ExternalPose p = pose_;  // flags, received_ns; each known part from its samples
+  Pose& q = p.pose;
+  if (const auto v = position_.value_at(tau_ns, max_extrapolation_ns)) {
+    q.position_W.x() = v->v[0];
+    q.position_W.y() = v->v[1];
+    if (extrapolated) *extrapolated = v->extrapolated;
+  }
+  if (const auto v = heading_.value_at(tau_ns, max_extrapolation_ns)) q.yaw = v->v[0];
+  if (const auto v = attitude_.value_at(tau_ns, max_extrapolation_ns)) {
+    q.pitch = v->v[0];
+    q.roll = v->v[1];
+  }
+  if (const auto v = depth_.value_at(tau_ns, max_extrapolation_ns)) q.position_W.z() = v->v[0];
+  if (const auto v = altitude_.value_at(tau_ns, max_extrapolation_ns)) p.altitude_m = v->v[0];
+  return p;
 }
 
 PoseSourceStats PoseMerger::stats() const {

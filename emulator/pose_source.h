@@ -34,9 +34,12 @@
 // Time. received_ns is what the injected now_ns() returned when the last frame or message that
 // updated the pose was received; frames that change nothing (ignored PGNs, malformed data) leave
 // it alone. A source that goes silent therefore keeps returning the same received_ns: the
-// emulator compares it with its own now_ns() and reports the pose as stale beyond its limit; no
-// extrapolation happens here. (received_ns covers the whole pose: a source that keeps sending
-// heading but stops sending position is not detected by it.)
+// emulator compares it with its own now_ns() and reports the pose as stale beyond its limit.
+// (received_ns covers the whole pose: a source that keeps sending heading but stops sending
+// position is not detected by it.) Besides the latest pose, each part's recent samples are kept
+// (emulator/pose_history.h): pose_at(τ) gives the pose of any time τ on the now_ns() clock,
+// interpolated between them (UDP messages placed at their own time stamps), or extrapolated
+// after the last.
 //
 // Failures. Opening throws std::invalid_argument for a malformed spec, std::runtime_error when
 // the source cannot be opened (no kernel CAN, a refused connection, a UDP port in use), naming
@@ -58,6 +61,7 @@
 #include "drivers/can/can_transport.h"
 #include "drivers/net/host_port.h"
 #include "drivers/net/udp_receiver.h"
+#include "emulator/pose_history.h"
 #include "sim/core/geodesy.h"
 #include "sim/frames.h"
 
@@ -75,6 +79,12 @@ class PoseSource {
   virtual ~PoseSource();
   // The merged latest pose, or nullopt before the first update.
   virtual std::optional<ExternalPose> latest() const = 0;
+  // The pose at τ (now_ns() clock) by the rule of emulator/pose_history.h, each part
+  // extrapolated for at most max_extrapolation_ns; nullopt before the first update.
+  // *extrapolated (if given): whether the position was extrapolated.
+  virtual std::optional<ExternalPose> pose_at(std::int64_t tau_ns,
+                                              std::int64_t max_extrapolation_ns,
+                                              bool* extrapolated = nullptr) const = 0;
   // One line for logs, e.g. "udp pose on 127.0.0.1:5700 (120 messages, 0 malformed)".
   virtual std::string describe() const = 0;
 };
@@ -116,15 +126,25 @@ class PoseMerger {
   void count_reconnect();
 
   std::optional<ExternalPose> latest() const;
+  std::optional<ExternalPose> pose_at(std::int64_t tau_ns, std::int64_t max_extrapolation_ns,
+                                      bool* extrapolated) const;
   PoseSourceStats stats() const;
 
  private:
-  void count_malformed_locked(std::string what);  // mu_ held
+  void count_malformed_locked(std::string what);   // mu_ held
+  void record_snapshot_locked(std::int64_t t_ns);  // all of pose_'s parts at t_ns (mu_ held)
 
   LocalTangentPlane ltp_;
   std::function<std::int64_t()> now_ns_;
   mutable std::mutex mu_;
   ExternalPose pose_;
+  // each part's recent samples (pose_at)
+  PartTrack<2> position_;
+  PartTrack<1> heading_{true};
+  PartTrack<2> attitude_;
+  PartTrack<1> depth_;
+  PartTrack<1> altitude_;
+  StampClock stamps_;
   bool any_ = false;
   bool have_sequence_ = false;
   std::uint32_t last_sequence_ = 0;
@@ -145,6 +165,10 @@ class CanPoseSource final : public PoseSource {
   CanPoseSource& operator=(const CanPoseSource&) = delete;
 
   std::optional<ExternalPose> latest() const override { return merger_.latest(); }
+  std::optional<ExternalPose> pose_at(std::int64_t tau_ns, std::int64_t max_extrapolation_ns,
+                                      bool* extrapolated = nullptr) const override {
+    return merger_.pose_at(tau_ns, max_extrapolation_ns, extrapolated);
+  }
   std::string describe() const override;
   PoseSourceStats stats() const { return merger_.stats(); }
   bool connected() const { return connected_.load(); }
@@ -178,6 +202,10 @@ class UdpPoseSource final : public PoseSource {
   UdpPoseSource& operator=(const UdpPoseSource&) = delete;
 
   std::optional<ExternalPose> latest() const override { return merger_.latest(); }
+  std::optional<ExternalPose> pose_at(std::int64_t tau_ns, std::int64_t max_extrapolation_ns,
+                                      bool* extrapolated = nullptr) const override {
+    return merger_.pose_at(tau_ns, max_extrapolation_ns, extrapolated);
+  }
   std::string describe() const override;
   PoseSourceStats stats() const { return merger_.stats(); }
   std::uint16_t bound_port() const { return receiver_.bound_port(); }

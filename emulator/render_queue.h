@@ -54,6 +54,8 @@ struct PingTruth {
   bool external = false;         // pose from --pose-from (else the scenario's trajectory)
   // --pose-from: ns since the external pose was received, at the ping time (-1: never received)
   std::int64_t pose_age_ns = 0;
+  // --pose-from: the pose was extrapolated past the last sample (emulator/pose_history.h)
+  bool pose_extrapolated = false;
 };
 
 struct PingSlot {

@@ -102,6 +102,9 @@ void format_stats_line(const RunStats& s, char* out, std::size_t out_size) {
     if (m > 0) n += m;
   };
   if (s.pings_stale) append(", %llu stale", static_cast<unsigned long long>(s.pings_stale));
+  if (s.pings_extrapolated) {
+    append(", %llu extrapolated", static_cast<unsigned long long>(s.pings_extrapolated));
+  }
   if (s.ping_lateness.count()) {
     append(" | lateness p50 %.3f p99 %.3f max %.3f ms", ms(s.ping_lateness.quantile_ns(0.5)),
            ms(s.ping_lateness.quantile_ns(0.99)),
@@ -144,6 +147,7 @@ std::string stats_json(const RunStats& s) {
   w.field("due", s.pings_due).field("sent", s.pings_sent).field("late", s.pings_late);
   w.field("dropped", s.pings_dropped).field("stale", s.pings_stale);
   w.field("stale_episodes", s.stale_episodes);
+  w.field("extrapolated", s.pings_extrapolated);
   w.field("deadline_misses", s.deadline_misses());
   w.field("deadline_tolerance_ms", ms(static_cast<double>(kDeadlineToleranceNs)), 6);
   w.field("rendered", s.pings_rendered);

@@ -76,8 +76,9 @@ struct RunStats {
   std::uint64_t pings_dropped = 0;  // not rendered before the next ping's send time
   std::uint64_t pings_stale = 0;    // not emitted: the external pose was stale (--pose-from)
   std::uint64_t stale_episodes = 0;
-  LatencyHistogram ping_lateness;  // send - send deadline (paced runs)
-  LatencyHistogram ping_latency;   // send - ping time (paced runs): send delay + lateness
+  std::uint64_t pings_extrapolated = 0;  // --pose-from: rendered at an extrapolated position
+  LatencyHistogram ping_lateness;        // send - send deadline (paced runs)
+  LatencyHistogram ping_latency;         // send - ping time (paced runs): send delay + lateness
 
   // navigation
   std::uint64_t nav_samples = 0;          // sample instants published (one SID each)

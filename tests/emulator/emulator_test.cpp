@@ -3,12 +3,15 @@
 // stale period.
 #include <atomic>
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iterator>
 #include <mutex>
 #include <sstream>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "config/loader/scenario_loader.h"
 #include "drivers/can/candump_log.h"
@@ -283,4 +286,105 @@ TEST_CASE("emulator: a long trajectory's start-up reports progress and honours a
     CHECK_THROWS_AS(Emulator(long_line_scenario(), o, clock, hooks), StartupStopped);
     CHECK(polls == 3);
   }
+}
+
+namespace {
+
+// Flies the small scenario for 3 s in real time following a 10 Hz UDP pose source that moves
+// north at 2 m/s (each message stamped with its own time, as tools/send_pose.py does), with
+// --pose-delay `delay_s`; returns the recorded pings (number, north, east) and the stats.
+struct PingAt {
+  std::uint32_t number = 0;
+  Vec2 ne = Vec2::Zero();
+};
+std::pair<std::vector<PingAt>, RunStats> fly_10hz_pose_source(const std::string& dir,
+                                                              double delay_s) {
+  std::uint16_t port = 0;
+  {
+    net::UdpReceiver probe(net::parse_host_port("127.0.0.1:0"));
+    port = probe.bound_port();
+  }
+  const config::Scenario sc = small_scenario();
+  const LocalTangentPlane ltp(
+      GeoPoint{sc.scene.origin.latitude_deg, sc.scene.origin.longitude_deg});
+  EmulatorOptions o;
+  o.rate = parse_rate("realtime");
+  o.threads = 2;
+  o.duration_s = 3.0;
+  o.record_dir = dir;
+  o.pose_from = "udp:127.0.0.1:" + std::to_string(port);
+  o.pose_delay_s = delay_s;
+  o.stats_interval_s = 0;
+  MonotonicClock clock;
+  EmulatorHooks hooks;
+  hooks.message = [](std::string_view) {};
+  Emulator emu(sc, o, clock, hooks);
+  std::atomic<bool> done{false};
+  std::thread sender([&] {
+    net::UdpSender tx(net::parse_host_port("127.0.0.1:" + std::to_string(port)));
+    const auto t0 = std::chrono::system_clock::now();
+    const auto start = std::chrono::steady_clock::now();
+    for (std::uint32_t i = 0; !done && i < 600; ++i) {
+      const auto now = std::chrono::system_clock::now();
+      const double s = std::chrono::duration<double>(now - t0).count();
+      const GeoPoint g = ltp.to_geodetic(-20.0 + 2.0 * s, -3.0);
+      PoseMessage m;
+      m.sequence = i;
+      m.time_unix_ns =
+          std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count();
+      m.latitude_deg = g.latitude_deg;
+      m.longitude_deg = g.longitude_deg;
+      m.depth_m = 14.0;
+      m.heading_rad = 0.0;
+      m.pitch_rad = 0.0;
+      m.roll_rad = 0.0;
+      tx.send(encode_pose_message(m));
+      std::this_thread::sleep_until(start + std::chrono::milliseconds(100) * (i + 1));
+    }
+  });
+  const RunStats s = emu.run();
+  done = true;
+  sender.join();
+  std::vector<PingAt> pings;
+  for (const auto& p : xtf::read_all_pings(dir + "/pings.xtf").pings) {
+    pings.push_back(
+        {p.header.ping_number, ltp.to_local(GeoPoint{p.header.sensor_y, p.header.sensor_x})});
+  }
+  return {pings, s};
+}
+
+// Checks that consecutive pings are evenly spaced along track (the speed times the ping period,
+// per ping number: a ping dropped by a loaded machine leaves a gap of two steps), after the
+// first 0.3 s (before the second pose sample a ping can only hold the first).
+void check_even_spacing(const std::vector<PingAt>& pings, const RunStats& s) {
+  const double step_m = 2.0 * 0.02667;
+  REQUIRE(pings.size() > 40);
+  REQUIRE(s.pings_sent == pings.size());
+  int uneven = 0;
+  for (std::size_t k = 12; k < pings.size(); ++k) {
+    const double step = (pings[k].ne - pings[k - 1].ne).norm();
+    const double expected_m = step_m * (pings[k].number - pings[k - 1].number);
+    const bool even = std::abs(step - expected_m) < 0.2 * step_m;
+    if (!even) {
+      ++uneven;
+      UNSCOPED_INFO("ping " << k << ": " << step << " m from the previous one");
+    }
+  }
+  // stale pings (none expected) would break the sequence: say so
+  INFO(s.pings_stale << " stale pings, " << s.pings_extrapolated << " extrapolated");
+  CHECK(uneven == 0);
+}
+
+}  // namespace
+
+TEST_CASE("emulator --pose-from: pings from a 10 Hz pose source are evenly spaced along track") {
+  testing::TempDir dir("emu-pose-spacing");
+  // interpolated (default delay): the waterfall does not stutter at the pose rate
+  const auto [ne, s] = fly_10hz_pose_source(dir.file("interp"), 0.1);
+  check_even_spacing(ne, s);
+  CHECK(s.pings_extrapolated < s.pings_sent);
+  // no delay: every ping extrapolated from the last two samples, still even for even motion
+  const auto [ne0, s0] = fly_10hz_pose_source(dir.file("extrap"), 0.0);
+  check_even_spacing(ne0, s0);
+  CHECK(s0.pings_extrapolated > s0.pings_sent / 2);
 }

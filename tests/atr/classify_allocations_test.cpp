@@ -1,7 +1,6 @@
 // Classifier::classify() runs onboard on a stream of chips: once the classifier is set up it
 // allocates nothing, for valid and rejected chips alike. Eigen allocates with malloc, not with
-// operator new, so malloc itself is counted: by interposing glibc's malloc family for this test
-// executable, or, under AddressSanitizer (which owns malloc), through its allocation hooks.
+// operator new: the counter (tests/support/allocation_counter.h) counts malloc itself.
 #include <catch2/catch.hpp>
 #include <cstddef>
 #include <cstdlib>
@@ -10,63 +9,9 @@
 
 #include "atr/subspace_classifier.h"
 #include "tests/atr/synthetic_chips.h"
+#include "tests/support/allocation_counter.h"
 
-namespace {
-// single-threaded test: plain globals (thread_local could itself allocate on first use)
-bool g_counting = false;
-long g_allocations = 0;
-}  // namespace
-
-#if defined(__SANITIZE_ADDRESS__)
-// from the sanitizer runtime (libasan); GCC does not ship <sanitizer/allocator_interface.h>
-extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
-                                                                             std::size_t),
-                                                         void (*free_hook)(const volatile void*));
-namespace {
-void on_malloc(const volatile void*, std::size_t) {
-  if (g_counting) ++g_allocations;
-}
-void on_free(const volatile void*) {}
-const int g_hooks_installed = __sanitizer_install_malloc_and_free_hooks(on_malloc, on_free);
-}  // namespace
-#else
-// glibc's own entry points, which the replacements forward to
-extern "C" {
-void* __libc_malloc(std::size_t size) noexcept;
-void* __libc_calloc(std::size_t n, std::size_t size) noexcept;
-void* __libc_realloc(void* p, std::size_t size) noexcept;
-void __libc_free(void* p) noexcept;
-
-void* malloc(std::size_t size) noexcept {
-  if (g_counting) ++g_allocations;
-  return __libc_malloc(size);
-}
-void* calloc(std::size_t n, std::size_t size) noexcept {
-  if (g_counting) ++g_allocations;
-  return __libc_calloc(n, size);
-}
-void* realloc(void* p, std::size_t size) noexcept {
-  if (g_counting) ++g_allocations;
-  return __libc_realloc(p, size);
-}
-void free(void* p) noexcept {
-  __libc_free(p);
-}
-}
-#endif
-
-namespace {
-
-template <class F>
-long allocations_in(F&& f) {
-  g_allocations = 0;
-  g_counting = true;
-  f();
-  g_counting = false;
-  return g_allocations;
-}
-
-}  // namespace
+using sonarloop::testing::allocations_in;
 
 using namespace sonarloop;
 using namespace sonarloop::atr;

@@ -26,32 +26,12 @@
 #include "drivers/xtf/xtf_types.h"
 #include "sim/render/quantise.h"
 #include "sim/render/sonar.h"
+#include "tests/support/allocation_counter.h"
 #include "tests/support/temp_dir.h"
 
-// Heap allocations of this program are counted, to show that make_xtf_ping reuses the buffers
-// of its output. Off under AddressSanitizer, which owns operator new there (the codec tests do
-// the same for the same reason); the buffer-reuse checks on data() pointers still run.
-namespace {
-std::atomic<long> g_new_calls{0};
-}
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kCountingNew = false;
-#else
-constexpr bool kCountingNew = true;
-// noipa keeps GCC from pairing these with malloc/free through inlining (-Wmismatched-new-delete)
-[[gnu::noipa]] void* operator new(std::size_t bytes) {
-  g_new_calls.fetch_add(1, std::memory_order_relaxed);
-  void* p = std::malloc(bytes == 0 ? 1 : bytes);
-  if (p == nullptr) throw std::bad_alloc();
-  return p;
-}
-[[gnu::noipa]] void operator delete(void* p) noexcept {
-  std::free(p);
-}
-[[gnu::noipa]] void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-#endif
+// Heap allocations are counted (tests/support/allocation_counter.h, also under ASan), to show
+// that make_xtf_ping reuses the buffers of its output.
+using sonarloop::testing::allocations_in;
 
 namespace {
 
@@ -194,7 +174,7 @@ void check_samples(const render::SonarSetup& s, const render::PingLines& lines,
   CHECK(xtf::samples_near_to_far<T>(decoded.channels[0], h.chan_info[0]) == port);
   CHECK(xtf::samples_near_to_far<T>(decoded.channels[1], h.chan_info[1]) == stbd);
 
-  // and in the raw bytes (formats.md 1.7): [256) ping header, [64) port channel header, port
+  // and in the raw bytes (docs/formats.md 1.7): [256) ping header, [64) port channel header, port
   // samples, [64) starboard channel header, starboard samples
   const std::size_t port_at = 256 + 64;
   const std::size_t stbd_hdr = port_at + n * sizeof(T);
@@ -269,7 +249,7 @@ TEST_CASE("the file header describes the sonar, for each sample type", "[xtf_pin
       CHECK(c.offset_x_m == 0.0f);
       CHECK(c.beams_per_array == 0);
     }
-    // encode -> decode gives it back; the bytes sit where formats.md 1.2/1.3 says
+    // encode -> decode gives it back; the bytes sit where docs/formats.md 1.2/1.3 says
     const std::vector<std::uint8_t> bytes = xtf::encode_file_header(h);
     REQUIRE(bytes.size() == 1024);
     CHECK(xtf::decode_file_header(bytes) == h);
@@ -357,7 +337,7 @@ TEST_CASE("a ping maps to XTF and survives encode/decode, for each sample type",
     CHECK(p.sensor_primary_altitude_m == 4.5f);
     CHECK(p.layback_m == 0.0f);
     CHECK(p.ship_altitude_dm == 0);
-    // the same fields at their byte offsets (formats.md 1.5)
+    // the same fields at their byte offsets (docs/formats.md 1.5)
     CHECK(read_le<std::uint16_t>(bytes.data() + 0) == 0xFACE);
     CHECK(bytes[2] == 0);                                  // HeaderType sonar
     CHECK(read_le<std::uint16_t>(bytes.data() + 4) == 2);  // NumChansToFollow
@@ -470,9 +450,8 @@ TEST_CASE("make_xtf_ping reuses the output's buffers and rewrites every field", 
     PingNav nav = test_nav();
 
     xtf::XtfPing out;
-    const long first_before = g_new_calls.load();
-    make_xtf_ping(s, h, first, nav, out);                        // sizes the buffers
-    if (kCountingNew) CHECK(g_new_calls.load() > first_before);  // the counter does count
+    // sizes the buffers (and shows that the counter does count)
+    CHECK(allocations_in([&] { make_xtf_ping(s, h, first, nav, out); }) > 0);
     // leftovers a previous user of `out` might have set must not survive
     out.header.event_number = 99;
     out.header.ocean_tide_m = 1.5f;
@@ -484,14 +463,7 @@ TEST_CASE("make_xtf_ping reuses the output's buffers and rewrites every field", 
     nav.ping_number += 1;
     nav.time_utc_ns += 40'000'000;
 
-    const long before = g_new_calls.load();
-    make_xtf_ping(s, h, second, nav, out);
-    const long after = g_new_calls.load();
-    if (kCountingNew) {
-      CHECK(after == before);
-    } else {
-      WARN("allocation counting is off under AddressSanitizer (see the top of this file)");
-    }
+    CHECK(allocations_in([&] { make_xtf_ping(s, h, second, nav, out); }) == 0);
     CHECK(sample_data(out.channels[0]) == port_data);
     CHECK(sample_data(out.channels[1]) == stbd_data);
     CHECK(out.channels.data() == channels_data);

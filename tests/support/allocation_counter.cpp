@@ -1,13 +1,22 @@
-// Replaces the global operator new and delete for the test executables that link it, counting
-// allocations on threads that asked for it (tests/support/allocation_counter.h).
+// Counts heap allocations on the threads that asked for it (tests/support/allocation_counter.h),
+// for the test executables that link it. malloc itself is counted, so that operator new (which
+// allocates through malloc), Eigen's aligned malloc and C allocations are all seen:
+// - normally by interposing glibc's malloc family for the executable (each replacement forwards
+//   to glibc's own __libc_* entry point);
+// - under AddressSanitizer, which owns malloc, through its allocation hooks (called on the
+//   allocating thread for every allocation, operator new included).
 #include "tests/support/allocation_counter.h"
 
-#include <cstdlib>
-#include <new>
+#include <cstddef>
 
 namespace {
+// initial-exec TLS of the executable itself: reading it never allocates
 thread_local bool g_counting = false;
 thread_local long g_allocations = 0;
+
+void count_one() {
+  if (g_counting) ++g_allocations;
+}
 }  // namespace
 
 namespace sonarloop::testing {
@@ -23,38 +32,55 @@ long counted_allocations() {
 
 }  // namespace sonarloop::testing
 
-// Every replaceable non-aligned form is replaced, so allocation and release always pair malloc
-// with free (AddressSanitizer checks the pairing).
-void* operator new(std::size_t size) {
-  if (g_counting) ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
+#if defined(__SANITIZE_ADDRESS__)
+// from the sanitizer runtime (libasan); GCC does not ship <sanitizer/allocator_interface.h>
+extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
+                                                                             std::size_t),
+                                                         void (*free_hook)(const volatile void*));
+namespace {
+void on_malloc(const volatile void*, std::size_t) {
+  count_one();
 }
-void* operator new[](std::size_t size) {
-  return operator new(size);
+void on_free(const volatile void*) {}
+const int g_hooks_installed = __sanitizer_install_malloc_and_free_hooks(on_malloc, on_free);
+}  // namespace
+#else
+extern "C" {
+void* __libc_malloc(std::size_t size) noexcept;
+void* __libc_calloc(std::size_t n, std::size_t size) noexcept;
+void* __libc_realloc(void* p, std::size_t size) noexcept;
+void* __libc_memalign(std::size_t alignment, std::size_t size) noexcept;
+void __libc_free(void* p) noexcept;
+
+void* malloc(std::size_t size) noexcept {
+  count_one();
+  return __libc_malloc(size);
 }
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  if (g_counting) ++g_allocations;
-  return std::malloc(size == 0 ? 1 : size);
+void* calloc(std::size_t n, std::size_t size) noexcept {
+  count_one();
+  return __libc_calloc(n, size);
 }
-void* operator new[](std::size_t size, const std::nothrow_t& tag) noexcept {
-  return operator new(size, tag);
+void* realloc(void* p, std::size_t size) noexcept {
+  count_one();
+  return __libc_realloc(p, size);
 }
-void operator delete(void* p) noexcept {
-  std::free(p);
+void* memalign(std::size_t alignment, std::size_t size) noexcept {
+  count_one();
+  return __libc_memalign(alignment, size);
 }
-void operator delete[](void* p) noexcept {
-  std::free(p);
+void* aligned_alloc(std::size_t alignment, std::size_t size) noexcept {
+  count_one();
+  return __libc_memalign(alignment, size);
 }
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
+int posix_memalign(void** out, std::size_t alignment, std::size_t size) noexcept {
+  count_one();
+  void* p = __libc_memalign(alignment, size);
+  if (p == nullptr) return 12;  // ENOMEM
+  *out = p;
+  return 0;
 }
-void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
+void free(void* p) noexcept {
+  __libc_free(p);
 }
-void operator delete(void* p, const std::nothrow_t&) noexcept {
-  std::free(p);
 }
-void operator delete[](void* p, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
+#endif

@@ -1,8 +1,9 @@
 #pragma once
 // Counts heap allocations made by a piece of code on the calling thread, for the tests that
 // check "no allocation per ping / per frame". Linking the object library
-// sonarloop_test_allocation_counter (tests/CMakeLists.txt) replaces the global operator new and
-// delete of the test executable (allocation_counter.cpp); other threads are not counted.
+// sonarloop_test_allocation_counter (tests/CMakeLists.txt) counts every malloc of the test
+// executable (operator new and Eigen included), also under AddressSanitizer
+// (allocation_counter.cpp); other threads are not counted.
 #include <utility>
 
 namespace sonarloop::testing {

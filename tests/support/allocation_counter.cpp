@@ -3,8 +3,8 @@
 // allocates through malloc), Eigen's aligned malloc and C allocations are all seen:
 // - normally by interposing glibc's malloc family for the executable (each replacement forwards
 //   to glibc's own __libc_* entry point);
-// - under AddressSanitizer, which owns malloc, through its allocation hooks (called on the
-//   allocating thread for every allocation, operator new included).
+// - under AddressSanitizer or ThreadSanitizer, which own malloc, through their allocation hooks
+//   (called on the allocating thread for every allocation, operator new included).
 #include "tests/support/allocation_counter.h"
 
 #include <cstddef>
@@ -32,7 +32,7 @@ long counted_allocations() {
 
 }  // namespace sonarloop::testing
 
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 // from the sanitizer runtime (libasan); GCC does not ship <sanitizer/allocator_interface.h>
 extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
                                                                              std::size_t),

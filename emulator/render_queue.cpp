@@ -14,6 +14,7 @@ RenderQueue::RenderQueue(PingProducer& producer, int slots, int threads, std::si
     s.packet.assign(packet_bytes, 0);
   state_.assign(slots_.size(), State::kFree);
   released_.assign(slots_.size(), false);
+  claimed_.assign(slots_.size(), -1);
 }
 
 RenderQueue::~RenderQueue() {
@@ -69,7 +70,7 @@ std::string RenderQueue::error() const {
 const PingSlot* RenderQueue::ready(std::int64_t k) const {
   const auto s = static_cast<std::size_t>(k % static_cast<std::int64_t>(slots_.size()));
   std::lock_guard<std::mutex> lock(mu_);
-  if (state_[s] == State::kReady && slots_[s].index == k) return &slots_[s];
+  if (state_[s] == State::kReady && claimed_[s] == k) return &slots_[s];
   return nullptr;
 }
 
@@ -78,7 +79,7 @@ void RenderQueue::release(std::int64_t k) {
   {
     std::lock_guard<std::mutex> lock(mu_);
     consumer_next_ = std::max(consumer_next_, k + 1);
-    if (slots_[s].index == k) {
+    if (claimed_[s] == k) {
       if (state_[s] == State::kReady) {
         state_[s] = State::kFree;
       } else if (state_[s] == State::kProducing) {
@@ -118,8 +119,8 @@ void RenderQueue::work(int worker) {
     k = next_claim_++;
     state_[s] = State::kProducing;
     released_[s] = false;
+    claimed_[s] = k;
     PingSlot& slot = slots_[s];
-    slot.index = k;
     lock.unlock();
 
     std::string what;
@@ -149,6 +150,7 @@ void RenderQueue::work(int worker) {
     while (slot.produce_ns > prev &&
            !produce_max_ns_.compare_exchange_weak(prev, slot.produce_ns)) {
     }
+    slot.index = k;  // the producer is done with the slot: it is the queue's again
     if (released_[s]) {
       state_[s] = State::kFree;
       released_[s] = false;

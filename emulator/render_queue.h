@@ -127,6 +127,9 @@ class RenderQueue {
   std::vector<PingSlot> slots_;
   std::vector<State> state_;
   std::vector<bool> released_;  // the publisher gave up on the ping being produced
+  // the ping each slot was last claimed for (mu_): the slot's own index is the producer's to
+  // write while it produces, so the publisher side never reads it then
+  std::vector<std::int64_t> claimed_;
 
   mutable std::mutex mu_;
   std::condition_variable cv_;  // workers: a slot was freed, the publisher moved, stop

@@ -19,6 +19,7 @@ cmake -S "$root" -B "$dir" "${gen[@]}" -DSONARLOOP_TSAN=ON -DSONARLOOP_MPI=OFF \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" >/dev/null
 cmake --build "$dir" -j "$(nproc)" --target "${tests[@]}"
 regex=$(IFS='|'; echo "^(${tests[*]})\$")
-# halt_on_error: a reported race fails the test; second_deadlock_stack for lock-order reports
-TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 ${TSAN_OPTIONS:-}" \
+# halt_on_error: a reported race fails the test; second_deadlock_stack for lock-order reports;
+# the suppressions: Embree's and TBB's uninstrumented threads (scripts/tsan.supp)
+TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$root/scripts/tsan.supp ${TSAN_OPTIONS:-}" \
   ctest --test-dir "$dir" --output-on-failure -j "$(nproc)" -R "$regex"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The concurrent code under ThreadSanitizer: builds the tests of everything that runs threads
 # (render queue, ping producer, emulator, pose sources, socketcand server, UDP, onboard packet
-# queue and pipeline, tile cache, web hub) with -fsanitize=thread and runs them.
+# queue and pipeline, tile cache) with -fsanitize=thread and runs them. (The seabed model's own
+# test is left out: its FFTs take 7 minutes under TSan; its cache is the tile cache tested here.)
 # Usage: scripts/tsan.sh [BUILD_DIR]   (default build-tsan)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -10,8 +11,7 @@ dir=${1:-$root/build-tsan}
 tests=(test_emulator_render_queue test_emulator_ping_producer test_emulator_emulator
        test_emulator_pose_source test_emulator_pacer test_drivers_can_socketcand_server
        test_drivers_can_can_transport test_drivers_net_udp test_atr_packet_queue
-       test_atr_stream_receiver test_atr_onboard_pipeline test_sim_seabed_tile_cache
-       test_sim_seabed_seabed_model)
+       test_atr_stream_receiver test_atr_onboard_pipeline test_sim_seabed_tile_cache)
 gen=()
 if command -v ninja >/dev/null 2>&1; then gen=(-G Ninja); fi
 # -O1 -g1: line tables for the reports; MPI off (Open MPI's own threads are not instrumented)

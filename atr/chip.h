@@ -49,6 +49,12 @@ struct LabelledChip {
   std::string source;                // where it came from (file path), for messages
 };
 
+// A chip left out of training or scoring, and why (a sentence a user can act on).
+struct SkippedChip {
+  std::string source;
+  std::string reason;
+};
+
 // The standard deviation below which a chip counts as constant, relative to its largest absolute
 // pixel value. Float pixels carry a relative rounding error of 2^-24 ~ 6e-8; a spread below
 // 1e-6 of the pixel magnitude is indistinguishable from rounding, and dividing by it would only

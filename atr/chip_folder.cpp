@@ -7,23 +7,32 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <span>
 #include <stdexcept>
+
+#include "atr/chip_label_name.h"
+#include "atr/chip_resample.h"
+#include "drivers/image/jpeg.h"
 
 namespace sonarloop::atr {
 namespace {
 
 namespace fs = std::filesystem;
 
+// dot-files, and the label images `sonarloop dataset` writes next to its chips
 bool hidden(const fs::path& p) {
   const std::string n = p.filename().string();
-  return !n.empty() && n[0] == '.';
+  return (!n.empty() && n[0] == '.') || is_chip_label_file_name(n);
 }
 
-bool is_png_name(const fs::path& p) {
-  std::string ext = p.extension().string();
+bool lower_ext_is_image(std::string ext) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".png";
+  return ext == ".png" || ext == ".jpg" || ext == ".jpeg";
+}
+
+bool is_image_name(const fs::path& p) {
+  return lower_ext_is_image(p.extension().string());
 }
 
 // Directory entries sorted by name (directory_iterator order is unspecified).
@@ -164,17 +173,63 @@ void apply_labels_csv(const fs::path& csv, ChipFolder& folder) {
   if (col_file < 0) throw std::runtime_error("'" + csv.string() + "' has no header row");
 }
 
-LabelledChip read_png_chip(const fs::path& path, const std::string& source,
-                           const std::string& label) {
-  LabelledChip c;
+// The pixels of one PNG or JPEG file (told by its first bytes), resampled when asked; errors
+// name `source`.
+Chip read_image_chip(const fs::path& path, const std::string& source,
+                     const std::optional<ChipSize>& size) {
   try {
-    c.chip = chip_from_gray8(image::read_png_gray8(path.string()));
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error("cannot open the file");
+    std::uint8_t head[8] = {};
+    in.read(reinterpret_cast<char*>(head), sizeof head);
+    const std::span<const std::uint8_t> got(head, static_cast<std::size_t>(in.gcount()));
+    Chip c;
+    if (image::looks_like_jpeg(got)) {
+      c = chip_from_gray8(image::read_jpeg_gray8(path.string()));
+    } else if (got.size() == 8 && got[0] == 0x89 && got[1] == 'P' && got[2] == 'N' &&
+               got[3] == 'G') {
+      c = chip_from_gray8(image::read_png_gray8(path.string()));
+    } else {
+      throw std::runtime_error("'" + path.string() +
+                               "' is not a PNG or JPEG image (by its first bytes)");
+    }
+    if (size) c = resample_chip(c.view(), size->width, size->height);
+    return c;
   } catch (const std::exception& e) {
     throw std::runtime_error("chip '" + source + "': " + e.what());
   }
-  c.label = label;
-  c.source = source;
-  return c;
+}
+
+// The reason a chip of another size than the first is left out, or stops the reading.
+std::string wrong_size_reason(const fs::path& dir, const LabelledChip& c,
+                              const LabelledChip& first) {
+  return "chip '" + (dir / c.source).string() + "' is " + std::to_string(c.chip.width) + " x " +
+         std::to_string(c.chip.height) + " pixels but '" + first.source + "' is " +
+         std::to_string(first.chip.width) + " x " + std::to_string(first.chip.height) +
+         ": all chips must have the same size (resample them with --size WxH)";
+}
+
+// Reads every listed chip's pixels; with skip_bad, unreadable and wrong-size chips move to
+// folder.skipped.
+void read_all_pixels(const fs::path& dir, const ChipFolderOptions& options, ChipFolder& folder) {
+  std::vector<LabelledChip> kept;
+  kept.reserve(folder.chips.size());
+  for (std::size_t i = 0; i < folder.chips.size(); ++i) {
+    LabelledChip& c = folder.chips[i];
+    try {
+      c.chip = read_image_chip(dir / c.source, c.source, options.size);
+      if (options.require_same_size && !kept.empty() &&
+          (c.chip.width != kept.front().chip.width || c.chip.height != kept.front().chip.height)) {
+        throw std::runtime_error(wrong_size_reason(dir, c, kept.front()));
+      }
+    } catch (const std::runtime_error& e) {
+      if (!options.skip_bad) throw;
+      folder.skipped.push_back({c.source, e.what()});
+      continue;
+    }
+    kept.push_back(std::move(c));
+  }
+  folder.chips = std::move(kept);
 }
 
 }  // namespace
@@ -187,8 +242,21 @@ Chip chip_from_gray8(const image::Gray8& g) {
   return c;
 }
 
-LabelledChip read_chip_png(const std::string& path) {
-  return read_png_chip(path, path, "");
+bool is_chip_image_name(const std::string& file_name) {
+  return is_image_name(fs::path(file_name));
+}
+
+Chip read_folder_chip(const ChipFolder& folder, std::size_t index,
+                      const std::optional<ChipSize>& size) {
+  const LabelledChip& c = folder.chips.at(index);
+  return read_image_chip(fs::path(folder.root) / c.source, c.source, size);
+}
+
+LabelledChip read_chip_file(const std::string& path, const std::optional<ChipSize>& size) {
+  LabelledChip c;
+  c.chip = read_image_chip(path, path, size);
+  c.source = path;
+  return c;
 }
 
 ChipFolder read_chip_folder(const std::string& root, const ChipFolderOptions& options) {
@@ -198,25 +266,25 @@ ChipFolder read_chip_folder(const std::string& root, const ChipFolderOptions& op
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) {
     throw std::runtime_error("'" + root +
-                             "' is not a folder (expected a folder of PNG chips "
+                             "' is not a folder (expected a folder of PNG or JPEG chips "
                              "with one subfolder per class)");
   }
-  std::vector<fs::path> root_pngs;
+  std::vector<fs::path> root_images;
   std::vector<fs::path> class_dirs;
   bool csv = false;
   for (const auto& e : sorted_entries(dir)) {
     if (e.is_directory()) {
       class_dirs.push_back(e.path());
-    } else if (is_png_name(e.path())) {
-      root_pngs.push_back(e.path());
+    } else if (is_image_name(e.path())) {
+      root_images.push_back(e.path());
     } else if (e.path().filename() == "labels.csv") {
       csv = true;
     }
   }
 
   if (!class_dirs.empty()) {
-    if (!root_pngs.empty()) {
-      throw std::runtime_error("'" + root_pngs[0].string() +
+    if (!root_images.empty()) {
+      throw std::runtime_error("'" + root_images[0].string() +
                                "' lies at the root next to class subfolders: each chip belongs "
                                "in the subfolder of its class");
     }
@@ -227,51 +295,51 @@ ChipFolder read_chip_folder(const std::string& root, const ChipFolderOptions& op
       std::size_t count = 0;
       for (const auto& e : sorted_entries(cd)) {
         const std::string rel = cls + "/" + e.path().filename().string();
-        if (e.is_directory()) {
-          throw std::runtime_error("unexpected folder '" + (dir / rel).string() +
-                                   "': a class folder holds only .png chips");
+        if (e.is_directory() || !is_image_name(e.path())) {
+          const std::string what = e.is_directory() ? "unexpected folder '" : "unexpected file '";
+          const std::string reason =
+              what + (dir / rel).string() + "': a class folder holds only .png or .jpg chips";
+          if (!options.skip_bad) throw std::runtime_error(reason);
+          folder.skipped.push_back({rel, reason});
+          continue;
         }
-        if (!is_png_name(e.path())) {
-          throw std::runtime_error("unexpected file '" + (dir / rel).string() +
-                                   "': a class folder holds only .png chips");
-        }
-        folder.chips.push_back(read_png_chip(e.path(), rel, cls));
+        LabelledChip c;
+        c.label = cls;
+        c.source = rel;
+        folder.chips.push_back(std::move(c));
         ++count;
       }
       if (count == 0) {
-        throw std::runtime_error("class folder '" + cd.string() + "' holds no .png chips");
+        throw std::runtime_error("class folder '" + cd.string() + "' holds no .png or .jpg chips");
       }
     }
-  } else if (!root_pngs.empty()) {
+  } else if (!root_images.empty()) {
     if (options.require_classes) {
       throw std::runtime_error("'" + root +
-                               "' holds PNG chips but no class subfolders: put each class's "
+                               "' holds chip images but no class subfolders: put each class's "
                                "chips in a subfolder named after the class");
     }
-    for (const auto& p : root_pngs) {
-      folder.chips.push_back(read_png_chip(p, p.filename().string(), ""));
+    for (const auto& p : root_images) {
+      LabelledChip c;
+      c.source = p.filename().string();
+      folder.chips.push_back(std::move(c));
     }
   } else {
     throw std::runtime_error("'" + root +
-                             "' holds no PNG chips (expected one subfolder per "
-                             "class with .png chips inside)");
+                             "' holds no PNG or JPEG chips (expected one subfolder per "
+                             "class with .png or .jpg chips inside)");
   }
 
-  if (options.require_same_size) {
-    const LabelledChip& first = folder.chips.front();
-    for (const auto& c : folder.chips) {
-      if (c.chip.width != first.chip.width || c.chip.height != first.chip.height) {
-        throw std::runtime_error(
-            "chip '" + (dir / c.source).string() + "' is " + std::to_string(c.chip.width) + " x " +
-            std::to_string(c.chip.height) + " pixels but '" + first.source + "' is " +
-            std::to_string(first.chip.width) + " x " + std::to_string(first.chip.height) +
-            ": all chips must have the same size");
-      }
-    }
-  }
+  // labels.csv names every chip listed, readable or not: apply it before reading pixels
   if (csv) {
     folder.has_labels_csv = true;
     apply_labels_csv(dir / "labels.csv", folder);
+  }
+  if (options.read_pixels) {
+    read_all_pixels(dir, options, folder);
+    folder.aspect_count = static_cast<std::size_t>(
+        std::count_if(folder.chips.begin(), folder.chips.end(),
+                      [](const LabelledChip& c) { return c.aspect_deg.has_value(); }));
   }
   return folder;
 }

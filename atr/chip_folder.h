@@ -1,18 +1,27 @@
 #pragma once
-// Folders of PNG chips, for training and scoring on synthetic or real data.
+// Folders of PNG or JPEG chips, for training and scoring on synthetic or real data.
 //
 // Layout:
 //   ROOT/
 //     labels.csv          optional: per-chip metadata (see below)
-//     manta/  001.png 002.png ...     one subfolder per class, named after the class
+//     manta/  001.png 002.jpg ...     one subfolder per class, named after the class
 //     rockan/ ...
-// Each PNG is read as 8-bit grey (drivers/image/png.h: colour is converted to luma, 16-bit keeps
-// its top byte) into float pixels 0..255. Class subfolders are sorted by name, chips by file
-// name. Files and folders whose name starts with '.' are ignored. Inside a class folder only
-// .png files (any letter case) are allowed; other files or nested folders are errors, as is an
-// empty class folder, an unreadable PNG, or a chip of another size than the rest (when
-// require_same_size). At the root, files other than PNGs are ignored (labels.csv is read);
-// a root with no class subfolder is read as unlabelled chips when allowed.
+// Each image is read as 8-bit grey into float pixels 0..255: PNG by drivers/image/png.h (colour
+// converted to luma, 16-bit keeps its top byte), JPEG by drivers/image/jpeg.h (colour converted
+// to luminance). The format is told by the file's first bytes, not its name. With
+// ChipFolderOptions::size every chip is resampled to that size (atr/chip_resample.h). Class
+// subfolders are sorted by name, chips by file name. Files and folders whose name starts with
+// '.' are ignored, and so are chips' label images (NAME_label.png, atr/chip_label_name.h). Inside a
+// class folder only chip images (.png, .jpg, .jpeg, any letter case) are allowed; other files or
+// nested folders are errors, as is an empty class folder, an unreadable image, or a chip of another
+// size than the rest (when require_same_size). With skip_bad, those files (all but an empty class
+// folder) are listed in ChipFolder::skipped instead, one entry each, and reading goes on. At the
+// root, files other than chip images are ignored (labels.csv is read); a root with no class
+// subfolder is read as unlabelled chips when allowed.
+//
+// Large folders: with read_pixels = false only the list is made (names, labels, aspects; no
+// pixels, so no size check and no unreadable file found yet); read_folder_chip() then reads one
+// chip at a time, so that training and classification never hold every chip's pixels.
 //
 // labels.csv: a header row naming its columns, then one row per chip; comma-separated, fields
 // may be double-quoted ("" inside quotes is a quote). Columns used: `file` (required): the chip's
@@ -26,14 +35,27 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+
 #include "atr/chip.h"
 #include "drivers/image/png.h"
 
 namespace sonarloop::atr {
 
+// A chip size in pixels.
+struct ChipSize {
+  int width = 0;
+  int height = 0;
+};
+
 struct ChipFolderOptions {
-  bool require_classes = true;    // false: a root holding PNGs and no subfolder is unlabelled
+  bool require_classes = true;    // false: a root holding images and no subfolder is unlabelled
   bool require_same_size = true;  // false: chips may differ in size (the classifier rejects them)
+  bool read_pixels = true;        // false: list the chips only (see read_folder_chip)
+  // List non-image files, nested folders, unreadable images and chips of another size than the
+  // first in ChipFolder::skipped instead of stopping with an error.
+  bool skip_bad = false;
+  std::optional<ChipSize> size;  // resample every chip to this size (area average)
 };
 
 struct ChipFolder {
@@ -45,12 +67,23 @@ struct ChipFolder {
   std::vector<LabelledChip> chips;
   bool has_labels_csv = false;
   std::size_t aspect_count = 0;  // chips with a known aspect angle
+  // Files left out with ChipFolderOptions::skip_bad (source relative to root, and why).
+  std::vector<SkippedChip> skipped;
 };
 
 ChipFolder read_chip_folder(const std::string& root, const ChipFolderOptions& options = {});
 
-// One PNG file as an unlabelled chip (source = the path).
-LabelledChip read_chip_png(const std::string& path);
+// The pixels of folder.chips[index], read from its file (and resampled to size when given).
+// Throws std::runtime_error naming the chip when the file cannot be read.
+Chip read_folder_chip(const ChipFolder& folder, std::size_t index,
+                      const std::optional<ChipSize>& size = std::nullopt);
+
+// One PNG or JPEG file as an unlabelled chip (source = the path), resampled to size when given.
+LabelledChip read_chip_file(const std::string& path,
+                            const std::optional<ChipSize>& size = std::nullopt);
+
+// Whether a file name has a chip image extension (.png, .jpg, .jpeg; any letter case).
+bool is_chip_image_name(const std::string& file_name);
 
 // 8-bit grey pixels as float chip pixels 0..255.
 Chip chip_from_gray8(const image::Gray8& g);

@@ -45,6 +45,13 @@
 //                    why the chip failed (cut: not_yet/gone/gap/outside; chip: constant/...)
 //   Non-finite numbers are written as null. Nothing depends on the wall clock: the same stream
 //   gives byte-identical reports (timings go to the pipeline's statistics).
+//
+// Transport. To a file or stdout as JSON Lines; or, with `onboard --contacts udp:HOST:PORT`
+// (also `run --classify MODEL --contacts udp:HOST:PORT`), over UDP: one datagram per contact,
+// holding exactly one line of JSON as above without the newline (a few hundred bytes, far below
+// a datagram's limit), sent as soon as the contact is decided. A missing receiver loses the
+// contacts (UDP); readers should skip a datagram that does not parse. The example autonomy agent
+// reads this stream (`sonarloop autonomy --contacts udp:HOST:PORT`, docs/autonomy.md).
 #include <cstdint>
 #include <optional>
 #include <string>

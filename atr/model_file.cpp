@@ -17,6 +17,8 @@ constexpr std::uint32_t kMaxP = 4096;
 constexpr std::uint32_t kMaxAspectSectors = 360;
 constexpr std::uint32_t kMaxClasses = 65535;
 constexpr std::size_t kMaxNameBytes = 255;
+// class flags (version 3)
+constexpr std::uint8_t kHeightKnown = 1;
 
 class Writer {
  public:
@@ -109,10 +111,11 @@ void write_class(Writer& w, const ClassModel& c, std::size_t n) {
   w.u16(static_cast<std::uint16_t>(c.name.size()));
   w.bytes(c.name.data(), c.name.size());
   w.u8(c.mine_like ? 1 : 0);
-  w.u8(0);
+  w.u8(c.height_m ? kHeightKnown : 0);  // version 3 flags
   w.u32(static_cast<std::uint32_t>(c.subspaces.size()));
   w.f32(c.reject_distance);  // version 2
   w.f32(c.typical_distance);
+  w.f64(c.height_m.value_or(0.0));  // version 3
   for (const Subspace& s : c.subspaces) {
     w.f64(s.aspect_min_deg);
     w.f64(s.aspect_max_deg);
@@ -141,7 +144,11 @@ ClassModel read_class(Reader& r, const Model& m, int version, const char* kind, 
   if (mine > 1)
     r.fail(label + " '" + c.name + "': mine_like flag " + std::to_string(mine) + " (0 or 1)");
   c.mine_like = mine == 1;
-  r.u8("reserved byte");
+  // a reserved byte before version 3 (ignored, as those versions did)
+  const std::uint8_t flags = r.u8(version >= 3 ? "class flags" : "reserved byte");
+  if (version >= 3 && flags > kHeightKnown) {
+    r.fail(label + " '" + c.name + "': flags byte " + std::to_string(flags) + " (0 or 1)");
+  }
   const std::uint32_t count = r.u32("subspace count");
   if (count == 0 || count > static_cast<std::uint32_t>(m.aspect_sectors)) {
     r.fail(label + " '" + c.name + "': subspace count " + std::to_string(count) +
@@ -150,6 +157,19 @@ ClassModel read_class(Reader& r, const Model& m, int version, const char* kind, 
   if (version >= 2) {
     c.reject_distance = r.f32("reject distance");
     c.typical_distance = r.f32("typical distance");
+  }
+  if (version >= 3) {
+    const double h = r.f64("height_m");
+    if (flags & kHeightKnown) {
+      if (!valid_class_height(h)) {
+        r.fail(label + " '" + c.name + "': height " + std::to_string(h) +
+               " m (allowed 0 to 100 m)");
+      }
+      c.height_m = h;
+    } else if (h != 0.0) {
+      r.fail(label + " '" + c.name + "': height " + std::to_string(h) +
+             " m, but the flags say unknown (then 0)");
+    }
   }
   const std::size_t n = m.feature_count();
   for (std::uint32_t s = 0; s < count; ++s) {
@@ -225,7 +245,8 @@ std::vector<std::uint8_t> encode_model(const Model& m) {
   return std::move(w.data());
 }
 
-Model decode_model(std::span<const std::uint8_t> bytes, const std::string& name) {
+Model decode_model(std::span<const std::uint8_t> bytes, const std::string& name,
+                   std::uint16_t* version_out) {
   Reader r(bytes, name);
   if (bytes.size() < sizeof kModelFileMagic ||
       std::memcmp(bytes.data(), kModelFileMagic, sizeof kModelFileMagic) != 0) {
@@ -234,10 +255,11 @@ Model decode_model(std::span<const std::uint8_t> bytes, const std::string& name)
   r.str(sizeof kModelFileMagic, "magic");
   r.u8("reserved byte");
   const std::uint16_t version = r.u16("format version");
-  if (version != 1 && version != kModelFileVersion) {
+  if (version < 1 || version > kModelFileVersion) {
     r.fail("unsupported format version " + std::to_string(version) +
-           " (this build reads versions 1 and " + std::to_string(kModelFileVersion) + ")");
+           " (this build reads versions 1 to " + std::to_string(kModelFileVersion) + ")");
   }
+  if (version_out) *version_out = version;
   // the checksum over everything but the trailer; judged after parsing, so that a truncated
   // file is reported where it ends, and a parse error can say whether the bytes are corrupt
   const bool crc_ok = bytes.size() >= kHeaderBytes + 4 && [&] {
@@ -321,13 +343,13 @@ void save_model(const Model& m, const std::string& path) {
   if (!out) throw std::runtime_error("cannot write model file '" + path + "'");
 }
 
-Model load_model(const std::string& path) {
+Model load_model(const std::string& path, std::uint16_t* version) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open model file '" + path + "'");
   const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
                                         std::istreambuf_iterator<char>());
   if (in.bad()) throw std::runtime_error("cannot read model file '" + path + "'");
-  return decode_model(bytes, path);
+  return decode_model(bytes, path, version);
 }
 
 }  // namespace sonarloop::atr

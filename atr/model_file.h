@@ -1,13 +1,16 @@
 #pragma once
 // The classifier's model file (.slpca): a versioned little-endian binary format.
 //
-// Version 2 layout (all integers unsigned little-endian, floats IEEE 754 little-endian); version
-// 1 is the same without the pre-processing record (read as no pre-processing):
+// Version 3 layout (all integers unsigned little-endian, floats IEEE 754 little-endian). Version
+// 2 is the same without the class height (its flags byte is 0); version 1 also lacks the
+// pre-processing record (read as no pre-processing) and the reject and typical distances. Older
+// versions are read with every class's height unknown (the tools then fill the heights of the
+// simulator's target classes, tools/class_metadata.h); mine_like was stored by every version.
 //
 //   header, 36 bytes
 //     0   u8[5]  magic "SLPCA"
 //     5   u8     0 (reserved)
-//     6   u16    format version (1)
+//     6   u16    format version (3)
 //     8   u32    chip width (pixels)
 //    12   u32    chip height (pixels)                      n = width * height
 //    16   u32    p, the requested subspace dimension
@@ -24,10 +27,12 @@
 //   C class records, then G group records, each:
 //     u16    name length L (1 to 255), then L bytes of name (UTF-8, no terminator)
 //     u8     mine_like (0 or 1)
-//     u8     0 (reserved)
+//     u8     flags (version 3; 0 before): bit 0 set when the class height is known
 //     u32    subspace count S (>= 1)
 //     f32    reject distance (version 2): open-set threshold, +infinity for none
 //     f32    typical distance (version 2): median cross-validated distance, 0 for none
+//     f64    height_m (version 3): the class's object height above the seabed (0 to 100 m)
+//            when flag bit 0 is set, else 0 (unknown)
 //     S subspace records:
 //       f64      aspect_min_deg, f64 aspect_max_deg   the sector [min, max), within [0, 360]
 //       u32      train_count k (>= 1)
@@ -52,16 +57,18 @@
 
 namespace sonarloop::atr {
 
-inline constexpr std::uint16_t kModelFileVersion = 2;
+inline constexpr std::uint16_t kModelFileVersion = 3;
 inline constexpr char kModelFileMagic[5] = {'S', 'L', 'P', 'C', 'A'};
 
 // The file's bytes for a (valid) model. Throws std::runtime_error if validate_model() fails.
 std::vector<std::uint8_t> encode_model(const Model& m);
-// Parses a model from bytes; `name` (a file name) prefixes error messages.
-Model decode_model(std::span<const std::uint8_t> bytes, const std::string& name = "model");
+// Parses a model from bytes; `name` (a file name) prefixes error messages. `version`, when
+// given, receives the file's format version (1 to kModelFileVersion).
+Model decode_model(std::span<const std::uint8_t> bytes, const std::string& name = "model",
+                   std::uint16_t* version = nullptr);
 
 void save_model(const Model& m, const std::string& path);
-Model load_model(const std::string& path);
+Model load_model(const std::string& path, std::uint16_t* version = nullptr);
 
 // CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320, initial and final XOR 0xFFFFFFFF).
 std::uint32_t crc32(std::span<const std::uint8_t> bytes);

@@ -6,19 +6,10 @@
 #include <limits>
 #include <numbers>
 
-#include "sim/targets/target_type.h"
-
 namespace sonarloop::atr {
 namespace {
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
-
-// Height of a class's target type (sim/targets), or nullopt for a name that is not one.
-std::optional<double> class_height_m(const std::string& name) {
-  if (const auto t = targets::find_target_type(name))
-    return targets::target_type_info(*t).size_m.z();
-  return std::nullopt;
-}
 
 }  // namespace
 
@@ -186,7 +177,7 @@ void OnboardPipeline::report(const Detection& d) {
         c.shift_rows = a.dr;
         c.shift_cols = a.dc;
         centre = cutter_->shifted(centre, a.dr, a.dc);
-        if (const auto h = class_height_m(cls.name)) height = *h;
+        if (cls.height_m) height = *cls.height_m;  // unknown: the shadow height
       }
     }
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -1,5 +1,5 @@
 #pragma once
-// The onboard consumer (design.md, atr/): datagrams of the emulator's sonar stream in, contact
+// The onboard consumer (docs/design.md, atr/): datagrams of the emulator's sonar stream in, contact
 // reports out.
 //
 //   datagram -> StreamReceiver (decode, reorder, count loss)   atr/stream_receiver.h
@@ -12,8 +12,9 @@
 //
 // Object position. The classifier's best window refines the object's centre (along track and
 // slant range). Its ground range is g = sqrt(r^2 - d^2) with d the depth of the centre below the
-// sonar: the ping's altitude less half the identified class's height (sim/targets/target_type.h;
-// the detector's shadow height without a class). Each ping k within position_window_m of the
+// sonar: the ping's altitude less half the identified class's height (stored in the model,
+// ClassModel::height_m; the detector's shadow height when the class's height is unknown or
+// without a class). Each ping k within position_window_m of the
 // centre puts the object at p_k + (s - s_k) u_k ± g v_k (p_k its navigation position, s_k its
 // dead-reckoned along-track position, s the object's footprint along-track position, u_k and
 // v_k the unit vectors along and to starboard of its heading, + starboard, - port); the report

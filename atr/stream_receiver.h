@@ -1,6 +1,6 @@
 #pragma once
-// The onboard consumer's input: the emulator's sonar stream (design.md "Wire conventions"), one
-// datagram at a time, turned into decoded XTF pings handed over IN PING-NUMBER ORDER.
+// The onboard consumer's input: the emulator's sonar stream (docs/design.md "Wire conventions"),
+// one datagram at a time, turned into decoded XTF pings handed over IN PING-NUMBER ORDER.
 //
 // Input: datagrams as `sonarloop run --udp` sends them (or as cut from an .xtf file): the
 // 1024-byte XTF file header (repeated every 2 s) and one XTF sonar packet per datagram, told apart
@@ -9,7 +9,7 @@
 // that differs from the current one replaces it (header_changes) after the buffered pings have
 // been handed over.
 //
-// Sequencing. XTF PingNumber counts consecutively (formats.md 1.5). The first ping received
+// Sequencing. XTF PingNumber counts consecutively (docs/formats.md 1.5). The first ping received
 // starts the sequence; after it the receiver expects next = last handed over + 1:
 //   - a ping within the reorder window (next <= n < next + W) waits in a slot until every
 //     earlier number has arrived or been given up, then goes out in order;

@@ -42,9 +42,14 @@
 // identified class exceeds it is reported unknown: an object of a type the model was not
 // trained on should lie far from every subspace instead of being forced into the nearest one.
 //
-// Mine / non-mine (Section 4.1.2). Each class carries a mine_like flag (by default from
-// sim/targets/target_type.h: Manta, Rockan, cylinder and cuboid are mine-like; names not in that
-// table are non-mine unless TrainOptions::mine_classes says otherwise). On top of
+// Class metadata. Each class carries a mine_like flag and, when known, the height of its
+// objects above the seabed (used onboard to place a contact, atr/onboard_pipeline.h). Both come
+// from TrainOptions::class_metadata and are stored in the model file; a class it does not list
+// is not mine-like and of unknown height. The classifier knows nothing of the simulator's
+// target types: `sonarloop train` fills the metadata of simulated target classes (manta, ...)
+// from the simulator's table, and of any class from its --mine-like and --height options.
+//
+// Mine / non-mine (Section 4.1.2). On top of
 // identification the classifier reports a group score for each group, the smallest class
 // distance within it; the decision is the group of smaller score, which is the group of the
 // identified class. Optionally (TrainOptions::group_subspaces) the model also holds dedicated
@@ -55,10 +60,16 @@
 // Onboard use: Classifier sizes its work vectors once; classify() does not allocate. Degenerate
 // chips (wrong size, non-finite pixel, constant) are rejected with a ChipCheck that says why;
 // they never produce NaN scores. Training cost per subspace: O(k^2 n) to form G, O(k^3) for its
-// eigen-decomposition, O(k n p) for U; classification costs about 4 n p flops per subspace.
+// eigen-decomposition, O(k n p) for U; with more chips than pixels (k > n) the n x n covariance
+// is decomposed instead: O(k n^2) to form it, O(n^3) for its eigen-decomposition (the same
+// non-zero eigenvalues and directions). Classification costs about 4 n p flops per subspace.
+// Training memory: the normalised chips once, as float (n k values), plus at most about four
+// n x n or k x k double matrices for one subspace (atr/subspace_training.cpp).
 #include <Eigen/Dense>
 #include <cstddef>
+#include <functional>
 #include <limits>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -93,10 +104,24 @@ struct Subspace {
   int rank() const { return static_cast<int>(basis.cols()); }
 };
 
+// The largest class height accepted (m): beyond it a value is a mistake (units), not an object.
+inline constexpr double kMaxClassHeight_m = 100.0;
+// Whether h is a usable class height: finite, 0 to kMaxClassHeight_m.
+bool valid_class_height(double h_m);
+
+// What a class is, beyond its chips: stored per class in the model.
+struct ClassMetadata {
+  bool mine_like = false;
+  // height of the class's objects above the seabed (m); unset: unknown, and the onboard
+  // pipeline places the contact with the detector's shadow height instead
+  std::optional<double> height_m;
+};
+
 // One target class (or one mine / non-mine group).
 struct ClassModel {
   std::string name;
   bool mine_like = false;
+  std::optional<double> height_m;   // see ClassMetadata; unset for groups
   std::vector<Subspace> subspaces;  // one per aspect sector that had training chips
   // Open-set rejection: a chip identified as this class whose distance exceeds this is reported
   // as unknown; +infinity (the default) never rejects. See TrainOptions::reject_quantile.
@@ -130,24 +155,33 @@ struct Model {
   }
   // Index of the class called `name`, or -1.
   int find_class(std::string_view name) const;
+  // Whether any class is mine-like: without one the mine / non-mine decision means nothing, and
+  // the tools do not report it.
+  bool has_mine_like_class() const;
 };
 
 // Throws std::runtime_error naming the first inconsistency: sizes, counts, ranks, non-finite
 // values, a basis that is not orthonormal (to 1e-3), duplicate or empty names, bad groups.
 void validate_model(const Model& m);
 
-// Whether a class name is mine-like by default: the mine_like flag of the sim/targets type of
-// that key ("manta", "rockan", "cylinder", "cuboid"); false for names not in that table.
-bool default_mine_like(std::string_view class_name);
-
 // The aspect sector (0 .. sectors-1) of an aspect angle: [s * 360/N, (s + 1) * 360/N) after
 // wrapping the angle to [0, 360).
 int aspect_sector(double aspect_deg, int sectors);
 
-// Eq. 8 and the Gram-matrix eigen-decomposition for one subspace. `x` holds k >= 1 normalised
-// chips as columns (n x k). Keeps at most p directions (and at most the rank of the centred data).
-// Computed in double; stored in float.
+// Eq. 8 and the eigen-decomposition for one subspace. `x` holds k >= 1 normalised chips as
+// columns (n x k). Keeps at most p directions (and at most the rank of the centred data).
+// Through the k x k Gram matrix when k <= n, else through the n x n covariance. Computed in
+// double; stored in float.
 Subspace fit_subspace(const Eigen::MatrixXd& x, int p);
+// The same for the columns `cols` of a float matrix, without copying them all in double when
+// there are more of them than rows (the covariance is then accumulated a block at a time).
+Subspace fit_subspace(const Eigen::MatrixXf& x, std::span<const Eigen::Index> cols, int p);
+
+// The class distance of a normalised chip x (n): the smallest eq. 10 residual over the class's
+// subspaces, and in *best_subspace the index of that subspace (-1 without any). work_n (n);
+// work_p must hold the largest rank. Allocation-free.
+float nearest_subspace(const ClassModel& c, const Eigen::VectorXf& x, Eigen::VectorXf& work_n,
+                       Eigen::VectorXf& work_p, int* best_subspace);
 
 // Eq. 10: | r - U U^T r | with r = x - mu, for a normalised chip x (n). work_n (n) receives the
 // residual vector r - U U^T r; work_p must hold at least rank() values. Allocation-free.
@@ -169,19 +203,19 @@ struct TrainOptions {
   // Cross-validate each class's distances (reject_folds folds) to set typical_distance; also
   // done whenever reject_quantile > 0. Costs about reject_folds extra fits per class.
   bool calibrate = false;
-  // Class names that are mine-like; when unset, default_mine_like() decides. Every name listed
-  // must be a class of the training set.
-  std::optional<std::vector<std::string>> mine_classes;
-  // Degenerate chips (constant, non-finite, wrong size): skipped and listed in the report when
-  // true, an error naming the chip when false.
+  // Metadata of classes by name, stored in the model. Names that are not classes of the
+  // training set are ignored (a table of every known type may be passed); a class not listed is
+  // not mine-like and of unknown height.
+  std::map<std::string, ClassMetadata, std::less<>> class_metadata;
+  // Unusable chips (unreadable, constant, non-finite, of another size than the first usable
+  // one): skipped and listed in the report when true, an error naming the chip when false.
   bool skip_degenerate = false;
+  // Called as training goes: stage ("reading chips", "fitting subspaces"), done, total.
+  std::function<void(std::string_view stage, std::size_t done, std::size_t total)> progress;
 };
 
 struct TrainReport {
-  struct Skipped {
-    std::string source;
-    std::string reason;
-  };
+  using Skipped = SkippedChip;
   std::vector<Skipped> skipped;
 };
 
@@ -189,6 +223,16 @@ struct TrainReport {
 // the same size. Throws std::runtime_error naming the chip or option at fault.
 Model train_model(std::span<const LabelledChip> chips, const TrainOptions& options = {},
                   TrainReport* report = nullptr);
+
+// Supplies the pixels of chip `index` of a training set; the view stays valid until the next
+// call. Throws std::runtime_error when the chip cannot be read (skipped with skip_degenerate).
+using ChipLoader = std::function<ChipView(std::size_t index)>;
+
+// The same, for chips read one at a time: `chips` gives labels, sources and aspect angles (their
+// pixels are not used), `load` the pixels, each chip once, in order. Training then holds the
+// normalised chips only, never all the raw ones (atr/chip_folder.h read_folder_chip).
+Model train_model(std::span<const LabelledChip> chips, const ChipLoader& load,
+                  const TrainOptions& options, TrainReport* report = nullptr);
 
 // The outcome of classifying one chip.
 struct Classification {

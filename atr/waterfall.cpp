@@ -12,7 +12,8 @@ namespace {
 
 // One international knot in m/s (1852 m per hour).
 constexpr double kMpsPerKnot = 1852.0 / 3600.0;
-// Isis' one-way sound velocity, the XTF default when a ping header gives none (formats.md 1.5).
+// Isis' one-way sound velocity, the XTF default when a ping header gives none
+// (docs/formats.md 1.5).
 constexpr double kDefaultXtfSoundVelocityMps = 750.0;
 // Largest samples per channel accepted: a UDP datagram holds at most 65,507 bytes.
 constexpr std::size_t kMaxSamples = 65536;

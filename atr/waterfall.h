@@ -11,12 +11,12 @@
 // lookup per sample and no logarithm.
 //
 // Geometry. Sample k of a channel covers slant range [r0 + k·b, r0 + (k + 1)·b) with r0 = the
-// channel's TimeDelay × the ping's SoundVelocity (XTF's one-way speed, formats.md 1.5) and
+// channel's TimeDelay × the ping's SoundVelocity (XTF's one-way speed, docs/formats.md 1.5) and
 // b = (SlantRange − r0) / NumSamples. Channels come from ChanInfo TypeOfChannel (port = 1,
 // starboard = 2) whatever their order; both must have the same sample count and type. A change
 // of sample count, bin size, r0 or sample type clears the ring (reset() counts them).
 //
-// Navigation per ping (XTF ping header, formats.md 1.5): SensorY/X (latitude/longitude when
+// Navigation per ping (XTF ping header, docs/formats.md 1.5): SensorY/X (latitude/longitude when
 // NavUnits = 3, else northing/easting in metres), SensorHeading, SensorPitch (+ nose up),
 // SensorRoll, SensorPrimaryAltitude (0 = unknown -> NaN), SensorDepth, SensorSpeed (knots).
 // Positions are kept as north/east metres in a local tangent plane (sim/core/geodesy.h) whose

@@ -11,7 +11,6 @@ function(sonarloop_add_test source)
   target_link_libraries(${name} PRIVATE sonarloop_catch_main ${ARGN})
   target_compile_definitions(${name} PRIVATE
     SONARLOOP_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    SONARLOOP_SHARED_DIR="${PROJECT_SOURCE_DIR}/../shared"
     SONARLOOP_BINARY_DIR="${PROJECT_BINARY_DIR}"
     SONARLOOP_PYTHON="/usr/bin/python3")
   sonarloop_target_defaults(${name})

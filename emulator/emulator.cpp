@@ -34,7 +34,7 @@ constexpr std::int64_t kStartupProgressNs = 5'000'000'000;
 // Longest sleep of the publisher: bounds how long a stop request (SIGINT) waits.
 constexpr std::int64_t kStopPollNs = 50'000'000;
 // XTF ping packet: 256-byte ping header, 64-byte channel header, sizes padded to 64 bytes
-// (formats.md 1.7).
+// (docs/formats.md 1.7).
 constexpr int kXtfPingHeaderBytes = 256;
 constexpr int kXtfChannelHeaderBytes = 64;
 constexpr int kXtfPadBytes = 64;
@@ -349,7 +349,15 @@ void Emulator::Impl::publish_nav(const NavSchedule::Sample& sample) {
       stats.nav_frames_withheld += static_cast<std::uint64_t>(std::popcount(due & ~kept));
       due = kept;
     } else {
-      solution = exact_nav->measure(merge_external_pose(trajectory->state_at(t), *ext));
+      vehicle::VehicleState state = merge_external_pose(trajectory->state_at(t), *ext);
+      // an external pose without altitude: the altimeter's (the DVL's) reading of the scene, the
+      // height above the seabed's large-scale relief (as the vehicle's depth planning sees it)
+      if (!std::isfinite(state.altitude_m)) {
+        const Vec3& p = state.pose.position_W;
+        state.altitude_m =
+            scenario.scene.water.depth_m - scene->seabed().base_elevation(p.x(), p.y()) - p.z();
+      }
+      solution = exact_nav->measure(state);
     }
   } else {
     solution = nav->measure(trajectory->state_at(t));

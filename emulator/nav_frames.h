@@ -1,12 +1,13 @@
 #pragma once
-// The vehicle's navigation as NMEA 2000 frames (formats.md §2): which PGNs, when, and what each
-// carries. Pure: no clock, no I/O.
+// The vehicle's navigation as NMEA 2000 frames (docs/formats.md §2): which PGNs, when, and what
+// each carries. Pure: no clock, no I/O.
 //
-// Schedule (formats.md §2.1 "default interval"): each PGN is sampled on its own grid from t = 0:
+// Schedule (docs/formats.md §2.1 "default interval"): each PGN is sampled on its own grid from
+// t = 0:
 //   100 ms   129025 Position Rapid Update, 127250 Vessel Heading, 127251 Rate of Turn
 //   250 ms   129026 COG & SOG Rapid Update
 //   1000 ms  127257 Attitude, 128259 Speed, 128267 Water Depth, 126992 System Time
-// PGNs due at the same instant form one sample: one navigation solution, one SID (formats.md
+// PGNs due at the same instant form one sample: one navigation solution, one SID (docs/formats.md
 // §2.2: "ties together PGNs sampled at the same instant"), frames in the order of kNavPgns.
 // After an overrun each PGN resynchronises on its own grid (pacer.h next_deadline): missed
 // samples are skipped and counted, never sent in a burst.
@@ -35,7 +36,7 @@
 
 namespace sonarloop::emulator {
 
-// NMEA 2000 source address of the emulated navigation system (the address of formats.md §2.4's
+// NMEA 2000 source address of the emulated navigation system (the address of docs/formats.md §2.4's
 // reference frames).
 inline constexpr std::uint8_t kNavSourceAddress = 0x23;
 

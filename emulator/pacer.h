@@ -1,5 +1,5 @@
 #pragma once
-// Pacing of the real-time loop (design.md, "Rules of the house"; style.md habits 8-9).
+// Pacing of the real-time loop (docs/design.md, "Rules of the house"; docs/style.md habits 8-9).
 //
 // Everything the emulator schedules lives in simulation time (SimTime, ns since the mission
 // start): ping k is emitted at k·ping_period, each NMEA 2000 PGN is sampled at multiples of its

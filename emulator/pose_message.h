@@ -1,7 +1,7 @@
 #pragma once
 // The UDP pose message: how an external vehicle (a vehicle computer in a hardware-in-the-loop
 // rig, a simulator, a script) tells the emulator where it is, for `sonarloop run --pose-from
-// udp:HOST:PORT` (style.md habit 7: a versioned packet with magic, sequence and absolute
+// udp:HOST:PORT` (docs/style.md habit 7: a versioned packet with magic, sequence and absolute
 // timestamp). Byte layout, semantics and an example datagram: emulator/pose_message.md.
 //
 //   off size type     field

@@ -11,8 +11,8 @@
 // Each source runs one background thread that receives and merges into the latest pose; latest()
 // may be called from any thread at any time.
 //
-// Merging. NMEA 2000 PGNs (formats.md §2.3) each update their part of the pose; frames from any
-// source address are merged, other PGNs are ignored (counted):
+// Merging. NMEA 2000 PGNs (docs/formats.md §2.3) each update their part of the pose; frames from
+// any source address are merged, other PGNs are ignored (counted):
 //   129025 Position, Rapid Update  lat/long -> pose.position_W x (north), y (east) through the
 //                                  LocalTangentPlane; has_position (both fields available)
 //   127250 Vessel Heading          heading -> pose.yaw; has_heading. A magnetic heading is made

@@ -4,7 +4,7 @@
 //   replay_xtf      an XTF file (ours, or a real one) as the live sonar stream: the file header
 //                   as one datagram first, then every packet of the file as one datagram, byte
 //                   for byte, paced by the pings' times. "File header + the packet datagrams" is
-//                   the file again (design.md, "Wire conventions").
+//                   the file again (docs/design.md, "Wire conventions").
 //   replay_candump  a candump log to CAN transports (SocketCAN, socketcand, log files), each
 //                   frame at its logged time relative to the first, as can-utils' canplayer does.
 //

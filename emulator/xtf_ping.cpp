@@ -16,7 +16,7 @@ namespace {
 
 constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 constexpr double kHzPerKhz = 1000.0;
-// String fields of XTFFILEHEADER (formats.md 1.2).
+// String fields of XTFFILEHEADER (docs/formats.md 1.2).
 constexpr std::size_t kSonarNameBytes = 16;
 constexpr std::size_t kNoteBytes = 64;
 
@@ -158,7 +158,7 @@ xtf::XtfFileHeader make_xtf_file_header(const render::SonarSetup& sonar,
   h.recording_program_name = kXtfRecordingProgramName;
   h.recording_program_version = kXtfRecordingProgramVersion;
   h.sonar_name = cut_utf8(sonar_name, kSonarNameBytes);
-  h.sonar_type = 0;  // none: readers apply no vendor-specific Weight (formats.md 1.2)
+  h.sonar_type = 0;  // none: readers apply no vendor-specific Weight (docs/formats.md 1.2)
   h.note_string = cut_utf8(note, kNoteBytes);
   h.nav_units = xtf::kNavUnitsLatLong;
   h.number_of_sonar_channels = 2;

@@ -1,23 +1,23 @@
 #pragma once
 // From the simulator's ping (render::PingLines) to XTF (drivers/xtf): the file header that
-// describes the sonar, and one sonar packet per ping. Field semantics: formats.md §1.
+// describes the sonar, and one sonar packet per ping. Field semantics: docs/formats.md §1.
 //
 // Conventions
 // - Channels: two sidescan channels, ChanInfo[0] = PORT (ChannelNumber 0), ChanInfo[1] =
-//   STARBOARD (ChannelNumber 1); ChannelNumber is always the CHANINFO index (formats.md 1.6, 1.9)
-//   and the channel blocks of a ping come in the same order.
+//   STARBOARD (ChannelNumber 1); ChannelNumber is always the CHANINFO index
+//   (docs/formats.md 1.6, 1.9) and the channel blocks of a ping come in the same order.
 // - Samples: PingLines bin k covers slant range [k, k+1)·bin_size_m; it becomes sample k of
 //   NumSamples = bins, quantised with render::quantise_line (TVG and gain applied, hence
 //   ProcessingFlags = 4), SlantRange = bins·bin_size_m (range of the end of the last sample),
 //   TimeDelay = 0. In the file the PORT samples are stored far range first (reversed), starboard
-//   nadir first (formats.md 1.7; xtf::stored_far_to_near).
+//   nadir first (docs/formats.md 1.7; xtf::stored_far_to_near).
 // - Sample type (SonarDesc::sample_type) -> CHANINFO BytesPerSample / SampleFormat:
 //   uint8 -> 1 / 8, uint16 -> 2 / 3, int16 -> 2 / 3, float32 -> 4 / 5 (IEEE float). X41 calls 8
 //   and 3 "int8" and "int16"; readers (pyxtf) read them unsigned, and the samples are unsigned
 //   envelope values (UniPolar = 1), full scale = VoltScale 5 V. int16 keeps them within 0 ..
 //   32767, so a reader that takes format 3 as signed reads them right too (as the Sea Scan file
 //   in tests/data/xtf). Float samples are amplitudes re full scale.
-// - Sound speed: SoundVelocity = 750 m/s (Isis' one-way convention, formats.md 1.5, 1.9) and
+// - Sound speed: SoundVelocity = 750 m/s (Isis' one-way convention, docs/formats.md 1.5, 1.9) and
 //   TimeDuration = SlantRange / 750, so that TimeDuration·SoundVelocity = SlantRange for any
 //   reader; the real sound speed goes to ComputedSoundVelocity.
 // - Frequency: CHANINFO Frequency (float) and ping-channel Frequency (WORD) in kHz, as the real
@@ -44,14 +44,14 @@
 
 namespace sonarloop::emulator {
 
-// XTFFILEHEADER RecordingProgramName / Version. The version is the example of formats.md 1.2
+// XTFFILEHEADER RecordingProgramName / Version. The version is the example of docs/formats.md 1.2
 // (numeric, as readers parse it).
 inline constexpr const char* kXtfRecordingProgramName = "SONARLP";
 inline constexpr const char* kXtfRecordingProgramVersion = "223";
 
-// XTFPINGHEADER.SoundVelocity: Isis' one-way (half) sound speed, m/s (formats.md 1.5).
+// XTFPINGHEADER.SoundVelocity: Isis' one-way (half) sound speed, m/s (docs/formats.md 1.5).
 inline constexpr double kXtfSoundVelocityMps = 750.0;
-// XTFPINGCHANHEADER.ProcessingFlags bit: TVG applied (formats.md 1.6).
+// XTFPINGCHANHEADER.ProcessingFlags bit: TVG applied (docs/formats.md 1.6).
 inline constexpr std::uint16_t kXtfProcessingTvg = 4;
 // CHANINFO.VoltScale: volts of a full-scale sample.
 inline constexpr float kXtfVoltScaleV = 5.0f;

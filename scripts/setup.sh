@@ -3,8 +3,13 @@
 # Skips apt entirely when everything is already installed.
 set -euo pipefail
 pkgs=(build-essential cmake ninja-build pkg-config
-      libembree-dev libeigen3-dev libyaml-cpp-dev catch2 libpng-dev
-      can-utils python3-can python3-numpy python3-matplotlib python3-yaml iproute2)
+      libembree-dev libeigen3-dev libyaml-cpp-dev catch2 libpng-dev libjpeg-dev
+      libcpp-httplib-dev
+      can-utils python3-can python3-numpy python3-matplotlib python3-yaml iproute2
+      openmpi-bin libopenmpi-dev)
+# for the tests only (scripts/test.sh sets SONARLOOP_BUILD_ALL=1): headless Chromium drives the
+# live web view in a real browser (test_tools_web_browser; it skips without it). Large: ~300 MB.
+if [ "${SONARLOOP_BUILD_ALL:-0}" = 1 ]; then pkgs+=(chromium); fi
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,5 +1,5 @@
 #pragma once
-// Frames and angle conventions, stated once for the whole project (style.md habit 15).
+// Frames and angle conventions, stated once for the whole project (docs/style.md habit 15).
 //
 // World frame W: local tangent plane, NED. x = north (m), y = east (m), z = down (m), origin at
 //   the scenario's geographic origin on the sea surface. The seabed is a heightmap

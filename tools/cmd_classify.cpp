@@ -1,5 +1,5 @@
-// sonarloop classify: classify PNG chips with a trained PCA model; score against the truth when
-// the chips come in class subfolders.
+// sonarloop classify: classify PNG or JPEG chips with a trained PCA model; score against the truth
+// when the chips come in class subfolders.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,8 +15,8 @@
 #include "atr/model_file.h"
 #include "atr/subspace_classifier.h"
 #include "drivers/json/json_writer.h"
-#include "sim/targets/target_type.h"
 #include "tools/args.h"
+#include "tools/chip_options.h"
 #include "tools/commands.h"
 #include "tools/progress.h"
 
@@ -31,11 +31,12 @@ struct Row {
 };
 
 // Whether a true class is mine-like: the model's flag for a class it knows, else the
-// sim/targets table for a target key, else unknown.
+// simulator's for a target type, else unknown.
 std::optional<bool> truth_mine_like(const atr::Model& m, const std::string& name) {
   if (const int i = m.find_class(name); i >= 0)
     return m.classes[static_cast<std::size_t>(i)].mine_like;
-  if (targets::find_target_type(name)) return atr::default_mine_like(name);
+  const auto sim = sim_class_metadata();
+  if (const auto it = sim.find(name); it != sim.end()) return it->second.mine_like;
   return std::nullopt;
 }
 
@@ -74,9 +75,14 @@ void write_csv(const std::string& path, const atr::Model& m, const std::vector<R
       out << "," << csv_field(cls.name) << "," << number(x.distance) << ","
           << (x.runner_up >= 0 ? csv_field(m.classes[static_cast<std::size_t>(x.runner_up)].name)
                                : "")
-          << "," << number(x.runner_up_distance) << "," << (x.mine_like ? 1 : 0) << ","
-          << number(x.mine_distance) << "," << number(x.non_mine_distance) << ","
-          << number(sub.aspect_min_deg) << "," << number(sub.aspect_max_deg);
+          << "," << number(x.runner_up_distance) << ",";
+      if (m.has_mine_like_class()) {
+        out << (x.mine_like ? 1 : 0) << "," << number(x.mine_distance) << ","
+            << number(x.non_mine_distance);
+      } else {
+        out << ",,";
+      }
+      out << "," << number(sub.aspect_min_deg) << "," << number(sub.aspect_max_deg);
       for (float d : x.class_distance)
         out << "," << number(d);
       out << ",\n";
@@ -90,43 +96,77 @@ void write_csv(const std::string& path, const atr::Model& m, const std::vector<R
   if (!out) throw std::runtime_error("cannot write '" + path + "'");
 }
 
-int run_classify(const std::vector<std::string>& argv) {
-  const Args args(argv, {{"--csv"}, {"--json"}, {"--quiet", false}, {"--aspect-bins"}});
-  if (args.positionals().size() != 2) throw UsageError("expected MODEL and CHIPS_DIR or CHIP.png");
-  const int aspect_bins = static_cast<int>(args.get_int("--aspect-bins", 0, 360).value_or(12));
-  const bool quiet = args.has("--quiet");
-  const std::string& model_path = args.positionals()[0];
-  const std::string& input = args.positionals()[1];
-
-  atr::Classifier clf(atr::load_model(model_path));
-  const atr::Model& m = clf.model();
-
-  // the chips: one PNG, or a folder (labelled when it has class subfolders)
+// The chips of a folder (labelled when it has class subfolders), listed without their pixels;
+// or one image file, read.
+atr::ChipFolder list_input(const std::string& input, bool skip_bad,
+                           const std::optional<atr::ChipSize>& size) {
   atr::ChipFolder folder;
   if (std::filesystem::is_directory(input)) {
     atr::ChipFolderOptions fo;
     fo.require_classes = false;
     fo.require_same_size = false;  // the classifier rejects each chip of the wrong size
+    fo.read_pixels = false;
+    fo.skip_bad = skip_bad;
     folder = atr::read_chip_folder(input, fo);
   } else {
     folder.root = input;
-    folder.chips.push_back(atr::read_chip_png(input));
+    folder.chips.push_back(atr::read_chip_file(input, size));
   }
+  return folder;
+}
 
-  // classify, timing the classifier alone
-  std::vector<Row> rows(folder.chips.size());
+int run_classify(const std::vector<std::string>& argv) {
+  const Args args(argv, {{"--csv"},
+                         {"--json"},
+                         {"--quiet", false},
+                         {"--aspect-bins"},
+                         {"--size"},
+                         {"--skip-bad-chips", false}});
+  if (args.positionals().size() != 2) throw UsageError("expected MODEL and CHIPS_DIR or CHIP.png");
+  const int aspect_bins = static_cast<int>(args.get_int("--aspect-bins", 0, 360).value_or(12));
+  const bool quiet = args.has("--quiet");
+  const bool skip_bad = args.has("--skip-bad-chips");
+  const std::optional<atr::ChipSize> size = chip_size_option(args);
+  const std::string& model_path = args.positionals()[0];
+  const std::string& input = args.positionals()[1];
+
+  atr::Classifier clf(load_model_with_metadata(model_path));
+  const atr::Model& m = clf.model();
+  const bool mine_decision = m.has_mine_like_class();
+  const bool one_file = !std::filesystem::is_directory(input);
+  atr::ChipFolder folder = list_input(input, skip_bad, size);
+  for (const auto& s : folder.skipped)
+    std::fprintf(stderr, "skipped '%s': %s\n", s.source.c_str(), s.reason.c_str());
+
+  // classify chip by chip (read, resample, classify), timing the classifier alone
+  std::vector<Row> rows;
+  rows.reserve(folder.chips.size());
   double classify_s = 0.0;
-  std::size_t classified = 0;
+  std::size_t classified = 0, unreadable = 0;
+  Progress bar("classifying " + std::to_string(folder.chips.size()) + " chips",
+               static_cast<double>(folder.chips.size()));
   for (std::size_t i = 0; i < folder.chips.size(); ++i) {
-    rows[i].chip = &folder.chips[i];
+    bar.update(static_cast<double>(i));
+    atr::Chip chip;
+    try {
+      chip = one_file ? std::move(folder.chips[i].chip) : atr::read_folder_chip(folder, i, size);
+    } catch (const std::runtime_error& e) {
+      if (!skip_bad) throw;
+      std::fprintf(stderr, "skipped '%s': %s\n", folder.chips[i].source.c_str(), e.what());
+      ++unreadable;
+      continue;
+    }
+    Row& row = rows.emplace_back();
+    row.chip = &folder.chips[i];
     const auto t = std::chrono::steady_clock::now();
-    rows[i].check = clf.classify(folder.chips[i].chip.view());
+    row.check = clf.classify(chip.view());
     classify_s += seconds_since(t);
-    if (rows[i].check.ok()) {
-      rows[i].result = clf.result();
+    if (row.check.ok()) {
+      row.result = clf.result();
       ++classified;
     }
   }
+  bar.finish();
 
   // per-chip lines
   for (const Row& r : rows) {
@@ -144,7 +184,7 @@ int run_classify(const std::vector<std::string>& argv) {
                   m.classes[static_cast<std::size_t>(x.runner_up)].name.c_str(),
                   static_cast<double>(x.runner_up_distance));
     }
-    std::printf(" %-9s", x.mine_like ? "mine" : "non-mine");
+    if (mine_decision) std::printf(" %-9s", x.mine_like ? "mine" : "non-mine");
     if (x.unknown)
       std::printf(" UNKNOWN (open-set score %.2f)", static_cast<double>(x.open_set_score));
     if (!r.chip->label.empty())
@@ -153,9 +193,11 @@ int run_classify(const std::vector<std::string>& argv) {
   }
 
   const std::size_t rejected = rows.size() - classified;
+  const std::size_t skipped = folder.skipped.size() + unreadable;
   std::printf("classified %zu chip%s (%zu rejected) with %s: %d x %d pixels, %zu classes, p = %d\n",
               classified, classified == 1 ? "" : "s", rejected, model_path.c_str(), m.chip_width,
               m.chip_height, m.classes.size(), m.p);
+  if (skipped) std::printf("skipped %zu unreadable files (listed on stderr)\n", skipped);
   const double per_chip_us = classified ? 1e6 * classify_s / static_cast<double>(classified) : 0.0;
   if (classified) std::printf("classify time: %.1f us per chip\n", per_chip_us);
 
@@ -181,7 +223,8 @@ int run_classify(const std::vector<std::string>& argv) {
       confusion->add(truth, static_cast<std::size_t>(r.result.class_index));
       const bool ok =
           m.classes[static_cast<std::size_t>(r.result.class_index)].name == r.chip->label;
-      if (const auto mine = truth_mine_like(m, r.chip->label)) {
+      const auto mine = mine_decision ? truth_mine_like(m, r.chip->label) : std::nullopt;
+      if (mine) {
         ++mine_total;
         mine_correct += r.result.mine_like == *mine;
       }
@@ -248,9 +291,11 @@ int run_classify(const std::vector<std::string>& argv) {
           .value(sub.aspect_min_deg)
           .value(sub.aspect_max_deg)
           .end_array();
-      w.field("mine_like", x.mine_like).field("mine_like_by_identity", x.mine_like_by_identity);
-      w.field("mine_distance", static_cast<double>(x.mine_distance), 7);
-      w.field("non_mine_distance", static_cast<double>(x.non_mine_distance), 7);
+      if (mine_decision) {
+        w.field("mine_like", x.mine_like).field("mine_like_by_identity", x.mine_like_by_identity);
+        w.field("mine_distance", static_cast<double>(x.mine_distance), 7);
+        w.field("non_mine_distance", static_cast<double>(x.non_mine_distance), 7);
+      }
       if (std::isfinite(cls.reject_distance)) {
         w.field("unknown", x.unknown)
             .field("open_set_score", static_cast<double>(x.open_set_score), 7);
@@ -265,6 +310,7 @@ int run_classify(const std::vector<std::string>& argv) {
     w.key("summary").begin_object();
     w.field("classified", static_cast<std::uint64_t>(classified));
     w.field("rejected", static_cast<std::uint64_t>(rejected));
+    w.field("skipped", static_cast<std::uint64_t>(skipped));
     w.field("classify_us_per_chip", per_chip_us, 4);
     if (confusion) {
       const auto ci = confusion->accuracy_interval();
@@ -331,35 +377,43 @@ int run_classify(const std::vector<std::string>& argv) {
 
 const Command kClassifyCommand{
     "classify",
-    "classify PNG chips with a trained model; confusion matrix and accuracy if labelled",
-    R"(usage: sonarloop classify MODEL CHIPS_DIR|CHIP.png [options]
+    "classify PNG or JPEG chips with a trained model; confusion matrix and accuracy if labelled",
+    R"(usage: sonarloop classify MODEL CHIPS_DIR|CHIP.png|CHIP.jpg [options]
 
 Classifies each chip with the eigen-subspace model written by 'sonarloop train': the chip is
 normalised by its own mean and standard deviation and given the class whose subspace leaves the
 smallest residual (Pailhas, Petillot & Capus 2010, eq. 10); the mine / non-mine decision
-(Section 4.1.2) follows. Prints one line per chip: file, predicted class and distance, the
-runner-up, mine / non-mine, and the truth when known.
+(Section 4.1.2) follows when the model has a mine-like class (see train --mine-like; without
+one, no mine / non-mine column or score is printed). Prints one line per chip: file, predicted
+class and distance, the runner-up, mine / non-mine, and the truth when known.
 
 CHIPS_DIR is either a folder with one subfolder per class (as for 'sonarloop train': the truth
-is the subfolder), or a folder of PNG chips without classes. With class subfolders the command
-also prints the confusion matrix, the accuracy with its 95 % Wilson score interval, the
+is the subfolder), or a folder of PNG or JPEG chips without classes. With class subfolders the
+command also prints the confusion matrix, the accuracy with its 95 % Wilson score interval, the
 mine / non-mine accuracy, and, when CHIPS_DIR/labels.csv gives aspect_deg, the accuracy by true
-aspect angle. A class the model does not know always counts as wrong.
+aspect angle. A class the model does not know always counts as wrong. Chips are read one at a
+time (a progress bar shows on stderr after a second).
 
 Degenerate chips (constant, non-finite, of another size than the model's) are rejected with a
-reason on stderr and left out of the scores. The exit status is 0 when at least one chip was
-classified, 1 otherwise or on error, 2 on a usage error.
+reason on stderr and left out of the scores. Files that are not PNG or JPEG, unreadable images
+and nested folders stop the command, unless --skip-bad-chips. The exit status is 0 when at
+least one chip was classified, 1 otherwise or on error, 2 on a usage error.
 
 options:
   --csv FILE          one row per chip: predictions, distances to every class, reasons
   --json FILE         per-chip predictions and the summary (confusion matrix, accuracy, CIs)
   --quiet             no per-chip lines (rejections and the summary only)
   --aspect-bins N     bins for the accuracy by aspect (default 12, 0 = off)
+  --size WxH          resample every chip to W x H pixels (area average) first, e.g. the
+                      model's size when the chips were cut at another
+  --skip-bad-chips    skip unreadable files, non-images and nested folders, one line each on
+                      stderr, instead of stopping at the first
 
 examples:
   sonarloop classify out/atr.slpca out/test_chips
   sonarloop classify out/atr.slpca out/test_chips --quiet --json out/scores.json
   sonarloop classify out/atr.slpca contact_0042.png
+  sonarloop classify survey.slpca ~/survey/test_chips --size 64x64 --skip-bad-chips
 )",
     run_classify, 61};
 SONARLOOP_REGISTER_COMMAND(kClassifyCommand);

@@ -12,7 +12,6 @@
 #include <limits>
 #include <memory>
 #include <set>
-#include <thread>
 
 #include "config/loader/scenario_loader.h"
 #include "config/loader/sonar_loader.h"
@@ -21,8 +20,11 @@
 #include "sim/render/chip_renderer.h"
 #include "sim/targets/target_type.h"
 #include "tools/args.h"
+#include "tools/chip_labels.h"
+#include "tools/chip_ranks.h"
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
+#include "tools/mpi_world.h"
 #include "tools/progress.h"
 
 namespace sonarloop::tools {
@@ -127,7 +129,7 @@ std::string format_fixed(double v, int decimals) {
 constexpr const char* kCsvHeader =
     "file,class,aspect_deg,mine_like,kind,seabed,altitude_m,range_m,heading_deg,side,"
     "resolution_cm,seed,index,slant_range_m,track_heading_deg,target_row,target_col,north_m,"
-    "east_m,width,height";
+    "east_m,width,height,label_file,highlight_pixels,shadow_pixels";
 
 // One labels.csv row (after `file`).
 std::string csv_fields(const render::ChipImage& c, const render::ChipDatasetSpec& spec) {
@@ -228,6 +230,10 @@ void write_dataset_json(const fs::path& path, const render::ChipRenderer& r,
   w.field("pixels",
           "8-bit grey: round(255 * (L - pixel_min_db) / (pixel_max_db - pixel_min_db)) clipped to "
           "0..255, L = 20 log10(amplitude re full scale) after TVG (sim/render/quantise.h)");
+  w.field("labels",
+          "<index>_label.png next to each chip, the same size: 8-bit values 0 seabed, 1 target "
+          "highlight, 2 target shadow (not grey levels), from the render's physics "
+          "(docs/rendering.md, Labels)");
   w.field("axes",
           "columns = slant range near to far, rows = pings along track; starboard chips have "
           "the last ping in row 0, port chips the first, so every chip is the seabed seen from "
@@ -286,14 +292,21 @@ int run_dataset(const std::vector<std::string>& argv) {
   spec.seed = static_cast<std::uint64_t>(
       args.get_int("--seed", 0, std::numeric_limits<long long>::max()).value_or(0));
   const int threads =
-      static_cast<int>(args.get_int("--threads", 1, 256)
-                           .value_or(std::max(1u, std::thread::hardware_concurrency())));
+      static_cast<int>(args.get_int("--threads", 1, 256).value_or(mpi::default_threads()));
   const std::string sonar_arg = args.get_or("--sonar", std::string(config::kDefaultSonarPreset));
   spec.sonar =
       is_yaml_path(sonar_arg) ? config::load_sonar(sonar_arg) : config::builtin_sonar(sonar_arg);
   if (const auto l = args.get("--levels-db")) spec.levels = parse_levels(*l);
   spec.seabeds = parse_seabeds(args.get_or("--seabed", kDefaultSeabeds));
   spec.renderer = renderer_option(args);
+
+  // under mpirun: rank 0 writes the dataset, the others render their share (tools/chip_ranks.h)
+  mpi::start();
+  if (!mpi::is_root()) {
+    install_stop_flag();
+    return serve_dataset(spec, static_cast<std::uint64_t>(count) * spec.classes.size(), threads,
+                         [] { return stop_requested(); });
+  }
 
   // an existing non-empty folder is never overwritten or mixed into
   std::error_code ec;
@@ -325,12 +338,7 @@ int run_dataset(const std::vector<std::string>& argv) {
   for (std::uint64_t v = total - 1; v >= 10; v /= 10)
     ++digits;
   digits = std::max(digits, kMinIndexDigits);
-  std::vector<render::ChipJob> jobs;
-  jobs.reserve(static_cast<std::size_t>(total) * spec.resolutions_m.size());
-  for (std::uint64_t i = 0; i < total; ++i) {
-    for (std::size_t r = 0; r < spec.resolutions_m.size(); ++r)
-      jobs.push_back(render::ChipJob{i, static_cast<int>(r)});
-  }
+  const std::vector<render::ChipJob> jobs = dataset_jobs(total, spec.resolutions_m.size());
 
   // each chip: its PNG (written to a dot-file, which chip readers ignore, then renamed), then
   // its labels.csv rows, flushed
@@ -339,7 +347,7 @@ int run_dataset(const std::vector<std::string>& argv) {
                static_cast<double>(jobs.size()));
   std::size_t written = 0;
   install_stop_flag();  // polled by the chip workers between chips
-  const std::size_t done = render::render_chips(
+  const std::size_t done = render_chips_on_ranks(
       renderer, jobs, threads,
       [&](const render::ChipImage& c) {
         const std::string cls(targets::target_type_info(c.params.type).key);
@@ -350,9 +358,10 @@ int run_dataset(const std::vector<std::string>& argv) {
         const fs::path dir = root / cls;
         if (made_dirs.insert(dir).second) fs::create_directories(dir);
         const fs::path tmp = dir / (std::string(".") + name + ".tmp");
+        write_chip_label_png(dir, name, c);  // <index>_label.png, before the chip it labels
         image::write_png_gray8(tmp.string(), c.cols, c.rows, c.pixels);
         fs::rename(tmp, dir / name);
-        const std::string fields = csv_fields(c, spec);
+        const std::string fields = csv_fields(c, spec) + "," + chip_label_csv_fields(name, c);
         const std::string rel = cls + "/" + name;
         csvs[static_cast<std::size_t>(c.resolution)]->write_line(rel + "," + fields);
         if (all_csv) {
@@ -373,9 +382,10 @@ int run_dataset(const std::vector<std::string>& argv) {
   }
   std::printf(
       "wrote %zu chips (%llu per class x %zu classes x %zu resolutions) in %.1f s "
-      "(%.1f chips/s, %d threads): %s\n",
+      "(%.1f chips/s, %d threads%s): %s\n",
       done, static_cast<unsigned long long>(count), spec.classes.size(), spec.resolutions_m.size(),
-      secs, static_cast<double>(done) / secs, threads, out_dir.string().c_str());
+      secs, static_cast<double>(done) / secs, threads, ranks_note().c_str(),
+      out_dir.string().c_str());
   return 0;
 }
 
@@ -405,15 +415,23 @@ whatever --threads, and --count only adds or removes chips at the end.
 
 Writes:
   DIR/<class>/<index>.png    one folder per class (manta, rockan, ...), index zero-padded
+  DIR/<class>/<index>_label.png
+                             its label image, the same size: per pixel 0 seabed, 1 target
+                             highlight, 2 target shadow (values, not grey levels), from the
+                             render's physics (docs/rendering.md); chip readers skip these
   DIR/labels.csv             file,class,aspect_deg,mine_like,kind,seabed,altitude_m,range_m,
                              heading_deg,side,resolution_cm,seed,index,slant_range_m,
-                             track_heading_deg,target_row,target_col,north_m,east_m,width,height
+                             track_heading_deg,target_row,target_col,north_m,east_m,width,height,
+                             label_file,highlight_pixels,shadow_pixels
                              (file relative to DIR; aspect_deg = target heading - look direction;
                              range_m = ground range; target_row/col = the target's centre in
-                             pixels)
+                             pixels; north_m/east_m = the target's position; label_file = the
+                             label image in the chip's folder, with its pixel counts)
   DIR/dataset.json           the options and the conventions above
 With several --resolution-cm, each resolution is a dataset of its own in DIR/res_<R>cm/ (with
 its labels.csv) and DIR/labels.csv lists them all (file relative to DIR).
+Under `mpirun -np N` (MPI builds: docs/sweep.md) every rank renders every N-th chip and rank 0
+writes them all: the same files as one process.
 `sonarloop train` and `classify` read a dataset folder directly. Ctrl-C stops cleanly: every PNG
 on disk then has its labels.csv row, and every row its PNG.
 
@@ -428,7 +446,8 @@ options:
                          files NAME.yaml whose seed, water and seabed are used (default
                          flat,ripples,clutter); chip i lies on kind (i / classes) mod kinds
   --seed S               dataset seed (default 0)
-  --threads N            worker threads, one chip each (default: all cores)
+  --threads N            worker threads, one chip each (default: all cores; under mpirun the
+                         cores it binds each rank to)
   --sonar NAME|FILE      sonar preset or YAML file (default pailhas_strip); its bin size, pulse
                          and range are replaced per resolution
   --levels-db MIN,MAX    dB re full scale of pixels 0 and 255 (default -60,0)
@@ -438,6 +457,7 @@ examples:
   sonarloop dataset --out out/chips --resolution-cm 5 --count 200
   sonarloop dataset --out out/study --resolution-cm 3 --resolution-cm 10 --resolution-cm 30
   sonarloop dataset --out out/shadows --kind shadow --classes all --seed 7
+  mpirun -np 4 sonarloop dataset --out out/big --count 100000 --threads 2
 )",
     run_dataset, 40};
 SONARLOOP_REGISTER_COMMAND(kDatasetCommand);

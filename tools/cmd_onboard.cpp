@@ -22,6 +22,7 @@
 #include "tools/onboard_output.h"
 #include "tools/output_file.h"
 #include "tools/scenario_source.h"
+#include "tools/web_view.h"
 
 namespace sonarloop::tools {
 namespace {
@@ -42,14 +43,41 @@ double seconds(std::chrono::steady_clock::duration d) {
   return std::chrono::duration<double>(d).count();
 }
 
+// Where each datagram goes: the pipeline, and the web view (--web) with the statistics every
+// kWebStatsEveryS.
+struct Consumer {
+  atr::OnboardPipeline& pipeline;
+  WebView* web = nullptr;
+  bool web_lossless = false;  // --xtf: wait for the view rather than drop (no deadline to keep)
+  CpuMeter cpu;
+  std::chrono::steady_clock::time_point next_stats{};
+
+  void feed(std::span<const std::uint8_t> datagram) {
+    pipeline.feed(datagram);
+    if (web) web->hub.push_datagram(datagram, web_lossless);
+  }
+  void flush() { pipeline.flush(); }
+  // the statistics to the page, at most every kWebStatsEveryS (always when `now_or_never`)
+  void tick(bool now_or_never = false) {
+    if (!web) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (!now_or_never && now < next_stats) return;
+    next_stats = now + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                           std::chrono::duration<double>(kWebStatsEveryS));
+    web->hub.push_stats(web_stats_of(pipeline.stats(), cpu.percent()));
+  }
+};
+
 // Reads an XTF file as the stream it was recorded from: its file header, then every packet.
-void feed_file(const std::string& path, atr::OnboardPipeline& pipeline, bool quiet) {
+void feed_file(const std::string& path, Consumer& consumer, bool quiet) {
   xtf::XtfReader reader(path);
-  pipeline.feed(reader.file_header_bytes());
+  consumer.feed(reader.file_header_bytes());
   xtf::XtfRawPacket packet;
   try {
-    while (!stop_requested() && reader.next_raw(packet))
-      pipeline.feed(packet.bytes);
+    while (!stop_requested() && reader.next_raw(packet)) {
+      consumer.feed(packet.bytes);
+      consumer.tick();
+    }
   } catch (const xtf::XtfFormatError& e) {
     // what was read is still processed
     std::fprintf(stderr, "sonarloop onboard: warning: %s; stopping there\n", e.what());
@@ -97,7 +125,7 @@ struct ListenOptions {
 };
 
 // Receives datagrams on a socket thread into a queue, and feeds the pipeline from it here.
-void listen(const ListenOptions& o, atr::OnboardPipeline& pipeline, atr::PacketQueue& queue) {
+void listen(const ListenOptions& o, Consumer& consumer, atr::PacketQueue& queue) {
   net::UdpReceiver rx(o.address, kReceiveBufferBytes);
   std::fprintf(stderr, "sonarloop onboard: listening on %s (receive buffer %d bytes)\n",
                net::to_string(rx.bound_address()).c_str(), rx.receive_buffer_bytes());
@@ -122,7 +150,8 @@ void listen(const ListenOptions& o, atr::OnboardPipeline& pipeline, atr::PacketQ
   auto last = start;
   bool got_any = false, flushed = true;
   for (;;) {
-    const bool got = queue.pop([&](std::span<const std::uint8_t> p) { pipeline.feed(p); }, kPollMs);
+    const bool got = queue.pop([&](std::span<const std::uint8_t> p) { consumer.feed(p); }, kPollMs);
+    consumer.tick();
     const auto now = Clock::now();
     if (got) {
       last = now;
@@ -132,7 +161,7 @@ void listen(const ListenOptions& o, atr::OnboardPipeline& pipeline, atr::PacketQ
     }
     if (queue.closed() && queue.size() == 0) break;  // socket thread ended (stop or error)
     if (!flushed && seconds(now - last) >= kFlushAfterS) {
-      pipeline.flush();
+      consumer.flush();
       flushed = true;
     }
     if (o.duration_s && seconds(now - start) >= *o.duration_s) break;
@@ -142,7 +171,7 @@ void listen(const ListenOptions& o, atr::OnboardPipeline& pipeline, atr::PacketQ
   done.store(true);
   reader.join();
   // what the socket thread queued before it stopped
-  while (queue.pop([&](std::span<const std::uint8_t> p) { pipeline.feed(p); }, 0)) {
+  while (queue.pop([&](std::span<const std::uint8_t> p) { consumer.feed(p); }, 0)) {
   }
   if (!socket_error.empty()) throw std::runtime_error(socket_error);
 }
@@ -161,7 +190,8 @@ int run_onboard(const std::vector<std::string>& argv) {
                          {"--look-radius"},
                          {"--origin"},
                          {"--scenario"},
-                         {"--quiet", false}});
+                         {"--quiet", false},
+                         {"--web"}});
   if (!args.positionals().empty()) {
     throw UsageError("unexpected argument '" + args.positionals()[0] + "'");
   }
@@ -199,7 +229,12 @@ int run_onboard(const std::vector<std::string>& argv) {
   std::optional<OutputFile> stats_json_file;
   if (stats_json) stats_json_file.emplace("--stats-json", *stats_json);
 
+  const std::optional<net::HostPort> web_address = web_option(args);
+
   std::optional<atr::Model> model = load_model_if(args.get("--model"));
+  // before listening: a port in use fails at once
+  std::unique_ptr<WebView> web =
+      open_web_view(web_address, options.frame_origin, "sonarloop onboard");
   if (!quiet) {
     if (model) {
       std::fprintf(stderr,
@@ -213,21 +248,29 @@ int run_onboard(const std::vector<std::string>& argv) {
     }
   }
   ContactWriter contacts(args.get("--contacts"), stdout);
-  atr::OnboardPipeline pipeline(std::move(model), options,
-                                [&contacts](const atr::Contact& c) { contacts.write(c); });
+  atr::OnboardPipeline pipeline(std::move(model), options, [&](const atr::Contact& c) {
+    contacts.write(c);
+    if (web) web->hub.push_contact(c);
+  });
+  Consumer consumer{pipeline, web.get(), xtf_path.has_value(), CpuMeter{}, {}};
   install_stop_flag();
   std::optional<atr::PacketQueue> queue;
   if (xtf_path) {
-    feed_file(*xtf_path, pipeline, quiet);
+    feed_file(*xtf_path, consumer, quiet);
   } else {
     queue.emplace(kQueueSlots, kMaxDatagramBytes);
-    listen(lo, pipeline, *queue);
+    listen(lo, consumer, *queue);
   }
   pipeline.finish();
+  consumer.tick(true);
   const atr::OnboardStats s = pipeline.stats();
   print_onboard_stats(
       stop_requested() ? "sonarloop onboard: stopped (SIGINT/SIGTERM)" : "sonarloop onboard: done",
       s, queue ? &*queue : nullptr);
+  if (web) {
+    web->hub.close();  // the last lines and statistics go out; then the counts are final
+    print_web_summary(*web);
+  }
   if (stats_json_file) {
     stats_json_file->write_and_close(onboard_stats_json(s, queue ? &*queue : nullptr) + "\n");
   }
@@ -262,7 +305,9 @@ options:
   --listen HOST:PORT     receive UDP there (port 0: any free port; the port is printed)
   --xtf FILE.xtf         read a recorded stream instead (e.g. run --record DIR: DIR/pings.xtf)
   --model MODEL          a model of `sonarloop train` (highlight chips, e.g. 60 x 60 at 5 cm)
-  --contacts FILE        write the contacts there (JSON Lines; default stdout)
+  --contacts FILE        write the contacts there (JSON Lines; default stdout); udp:HOST:PORT
+                         sends each contact's JSON line as one UDP datagram there instead
+                         (e.g. to `sonarloop autonomy --contacts`)
   --duration S           stop after S seconds of listening
   --idle-exit S          stop when no datagram has come for S seconds (after the first)
   --reorder-window N     pings held to put late datagrams back in order (default 32)
@@ -278,6 +323,11 @@ options:
                          stream's first ping (for recordings of no scenario, e.g. real data)
   --stats-json FILE      write the final statistics as JSON
   --quiet                no start-up lines (warnings and the final statistics still print)
+  --web HOST:PORT        serve the live operator view there (docs/web.md): waterfall, track,
+                         contacts, statistics, pause; PORT alone binds 127.0.0.1, port 0 a
+                         free port (the URL is printed). Read-only; a slow browser loses
+                         lines, never delays the consumer. With --xtf the view ends when the
+                         file is read
 
 examples:
   sonarloop dataset --out out/chips --count 400 && sonarloop train out/chips --out out/atr.slpca
@@ -285,6 +335,7 @@ examples:
   sonarloop run --udp 127.0.0.1:5600 --rate 4
   sonarloop onboard --xtf out/run/pings.xtf --model out/atr.slpca
   sonarloop onboard --xtf survey.xtf --model real.slpca --origin first-ping
+  sonarloop onboard --listen 127.0.0.1:5600 --model out/atr.slpca --web 8080
 )",
     run_onboard, 15};
 SONARLOOP_REGISTER_COMMAND(kOnboardCommand);

@@ -25,6 +25,7 @@
 #include "tools/progress.h"
 #include "tools/scenario_source.h"
 #include "tools/waterfall.h"
+#include "tools/waterfall_annotations.h"
 
 namespace sonarloop::tools {
 namespace {
@@ -38,10 +39,10 @@ struct Track {
   Vec2 end = Vec2::Zero();
 };
 
-// Memory per ping while rendering: its pose, both sides' float amplitudes, the 8-bit slant- and
-// ground-range waterfall images, and the altitude.
+// Memory per ping while rendering: its pose, both sides' float amplitudes and labels, the 8-bit
+// slant- and ground-range waterfall images, and the altitude.
 std::size_t bytes_per_ping(int bins) {
-  return sizeof(Pose) + sizeof(double) + 2 * static_cast<std::size_t>(bins) * (sizeof(float) + 2);
+  return sizeof(Pose) + sizeof(double) + 2 * static_cast<std::size_t>(bins) * (sizeof(float) + 3);
 }
 
 std::string gib_text(double bytes) {
@@ -175,11 +176,14 @@ int run_render(const std::vector<std::string>& argv) {
   wf.bin_size_m = sd.bin_size_m;
   wf.amplitude.resize(n_pings * 2 * static_cast<std::size_t>(setup.bins));
   wf.altitude_m.resize(n_pings);
+  wf.label.resize(wf.amplitude.size());
+  std::vector<std::vector<render::TargetTrace>> traces_by_ping(n_pings);
   std::vector<TargetTruth> truth(sc.targets().size());
   xtf::XtfPing packet;
 
   render::TrackRenderOptions opt;
   opt.ping.truth = true;
+  opt.ping.labels = true;
   opt.threads = threads;
   const auto t0 = std::chrono::steady_clock::now();
   Progress bar("rendering " + std::to_string(n_pings) + " pings", 1.0);
@@ -209,6 +213,11 @@ int run_render(const std::vector<std::string>& argv) {
               render::relative_amplitude(setup, lines.stbd[static_cast<std::size_t>(b)], r));
         }
         wf.altitude_m[k] = lines.altitude_m;
+        // labels, laid out as the amplitudes; the traces, to tell the targets' boxes apart
+        std::uint8_t* label_row = wf.label.data() + k * 2 * static_cast<std::size_t>(setup.bins);
+        std::copy(lines.port_label.begin(), lines.port_label.end(), label_row);
+        std::copy(lines.stbd_label.begin(), lines.stbd_label.end(), label_row + setup.bins);
+        traces_by_ping[k].assign(traces.begin(), traces.end());
         for (const auto& tr : traces) {
           TargetTruth& t = truth[static_cast<std::size_t>(tr.target)];
           t.side = tr.side;
@@ -235,6 +244,12 @@ int run_render(const std::vector<std::string>& argv) {
 
   write_waterfall_png((dir_out / "waterfall.png").string(), wf);
   write_ground_waterfall_png((dir_out / "waterfall_ground.png").string(), wf);
+  write_label_png((dir_out / "labels.png").string(), wf);
+  std::vector<AnnotatedTarget> annotated;
+  for (const auto& pt : sc.targets())
+    annotated.push_back(AnnotatedTarget{pt.desc.name, pt.desc.type});
+  write_coco_annotations((dir_out / "annotations.json").string(), wf,
+                         label_boxes(wf, traces_by_ping), annotated, "waterfall.png", "labels.png");
 
   json::Writer w(true);
   w.begin_object().field("scenario", scenario.scene.name).field("seed", scenario.scene.seed);
@@ -243,6 +258,14 @@ int run_render(const std::vector<std::string>& argv) {
   w.field("bin_size_m", sd.bin_size_m)
       .field("ping_spacing_m", spacing)
       .field("altitude_m", altitude);
+  w.field("frame",
+          "track_m and position_m are [north, east] in metres from the scenario origin (the frame "
+          "of scene.json and of the onboard consumer's contacts, north_m / east_m)");
+  w.key("origin")
+      .begin_object()
+      .field("latitude_deg", scenario.scene.origin.latitude_deg, 9)
+      .field("longitude_deg", scenario.scene.origin.longitude_deg, 9)
+      .end_object();
   w.key("track_m").begin_array();
   w.begin_array().value(track.start.x()).value(track.start.y()).end_array();
   w.begin_array().value(track.end.x()).value(track.end.y()).end_array();
@@ -314,6 +337,11 @@ renderer by default, --renderer raytrace for the Embree reference) and writes:
                          the last ping at the top (a north-going line reads north-up)
   waterfall_ground.png   the same, ground-range corrected with each ping's nadir altitude
   truth.json             per target: the pings and samples of its highlight and of its shadow
+  labels.png             per pixel of waterfall.png (aligned pixel for pixel): 0 seabed,
+                         1 target highlight, 2 target shadow, from the render's physics
+                         (docs/rendering.md); the values themselves, so it looks black
+  annotations.json       COCO-style boxes around each target's labelled highlight and shadow
+                         pixels (separate annotations, attribute "part"), category = target type
 Without SCENARIO.yaml the embedded default scenario is used.
 
 options:

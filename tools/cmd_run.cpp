@@ -19,6 +19,7 @@
 #include "tools/onboard_output.h"
 #include "tools/output_file.h"
 #include "tools/scenario_source.h"
+#include "tools/web_view.h"
 
 namespace sonarloop::tools {
 namespace {
@@ -110,10 +111,12 @@ int run_run(const std::vector<std::string>& argv) {
                          {"--stats-every"},
                          {"--pose-from"},
                          {"--stale-after"},
+                         {"--pose-delay"},
                          {"--epoch"},
                          {"--classify"},
                          {"--contacts"},
-                         {"--renderer"}});
+                         {"--renderer"},
+                         {"--web"}});
   if (args.positionals().size() > 1) throw UsageError("expected at most one SCENARIO.yaml");
   const bool quiet = args.has("--quiet");
 
@@ -139,8 +142,9 @@ int run_run(const std::vector<std::string>& argv) {
   o.pose_from = args.get("--pose-from");
   o.renderer = renderer_option(args);
   o.stale_after_s = args.get_double("--stale-after", 1e-3, 3600.0).value_or(2.0);
-  if (args.has("--stale-after") && !o.pose_from) {
-    throw UsageError("--stale-after applies to --pose-from only");
+  o.pose_delay_s = args.get_double("--pose-delay", 0.0, 3600.0).value_or(o.pose_delay_s);
+  if ((args.has("--stale-after") || args.has("--pose-delay")) && !o.pose_from) {
+    throw UsageError("--stale-after and --pose-delay apply to --pose-from only");
   }
   if (o.pose_from && o.rate.max) {
     throw UsageError("--pose-from needs --rate realtime or a factor, not max");
@@ -150,7 +154,12 @@ int run_run(const std::vector<std::string>& argv) {
   }
   // validated with --quiet too (which silences the lines)
   const double stats_every = args.get_double("--stats-every", 0.0, 3600.0).value_or(5.0);
-  o.stats_interval_s = quiet ? 0.0 : stats_every;
+  const double print_every = quiet ? 0.0 : stats_every;
+  const std::optional<net::HostPort> web_address = web_option(args);
+  // the page gets statistics every second; the console keeps its own interval
+  o.stats_interval_s =
+      !web_address ? print_every
+                   : (print_every > 0 ? std::min(print_every, kWebStatsEveryS) : kWebStatsEveryS);
   const auto stats_json = args.get("--stats-json");
   // opened now: an unwritable place fails before the run, not after it
   std::optional<OutputFile> stats_json_file;
@@ -170,16 +179,29 @@ int run_run(const std::vector<std::string>& argv) {
     if (quiet && !warning) return;
     std::fprintf(stderr, "%.*s\n", static_cast<int>(text.size()), text.data());
   };
-  hooks.on_stats = [](const emulator::RunStats& s) {
+  // before the scene is built: a port in use fails at once
+  std::unique_ptr<WebView> web = open_web_view(
+      web_address,
+      GeoPoint{scenario.scene.origin.latitude_deg, scenario.scene.origin.longitude_deg},
+      "sonarloop run");
+  double next_print_s = print_every;
+  hooks.on_stats = [&web, &next_print_s, print_every](const emulator::RunStats& s) {
+    if (web) web->hub.push_stats(web_stats_of(s));
+    // with --web this is called every kWebStatsEveryS: print at the console's own interval
+    constexpr double kSlackS = 1e-3;
+    if (print_every <= 0 || s.wall_time_s + kSlackS < next_print_s) return;
+    while (next_print_s <= s.wall_time_s + kSlackS)
+      next_print_s += print_every;
     char line[512];
     emulator::format_stats_line(s, line, sizeof line);
     std::fprintf(stderr, "%s\n", line);
   };
   hooks.stop_requested = [] { return stop_requested(); };
   std::unique_ptr<InProcessOnboard> onboard;  // --classify: fed from on_ping
-  if (model) {
-    hooks.on_ping = [&onboard](std::span<const std::uint8_t> p) {
+  if (model || web) {
+    hooks.on_ping = [&onboard, &web](std::span<const std::uint8_t> p) {
       if (onboard) onboard->on_ping(p);
+      if (web) web->hub.push_datagram(p);  // never waits (a full queue drops, counted)
     };
   }
 
@@ -197,13 +219,17 @@ int run_run(const std::vector<std::string>& argv) {
     return report_startup_stop(e);
   }
   emulator::Emulator& emu = *emu_holder;
+  const std::vector<std::uint8_t> file_header = xtf::encode_file_header(emu.file_header());
+  if (web) web->hub.push_datagram(file_header);
   if (model) {
     atr::OnboardOptions onboard_options;  // contacts in the scenario's frame
     onboard_options.frame_origin =
         GeoPoint{scenario.scene.origin.latitude_deg, scenario.scene.origin.longitude_deg};
-    onboard = std::make_unique<InProcessOnboard>(
-        std::move(*model), onboard_options, args.get("--contacts"),
-        xtf::encode_file_header(emu.file_header()), emu.packet_bytes(), o.rate.max);
+    InProcessOnboard::ContactObserver to_web;
+    if (web) to_web = [&web](const atr::Contact& c) { web->hub.push_contact(c); };
+    onboard = std::make_unique<InProcessOnboard>(std::move(*model), onboard_options,
+                                                 args.get("--contacts"), file_header,
+                                                 emu.packet_bytes(), o.rate.max, std::move(to_web));
     if (!quiet) {
       std::fprintf(stderr, "onboard: classifying with %s, contacts to %s\n", classify->c_str(),
                    onboard->contacts_destination().c_str());
@@ -242,6 +268,11 @@ int run_run(const std::vector<std::string>& argv) {
                      : sig == SIGTERM ? "stopped by SIGTERM"
                                       : "done");
   if (onboard) print_onboard_stats("onboard", onboard->finish(), &onboard->queue());
+  if (web) {
+    web->hub.push_stats(web_stats_of(stats));
+    web->hub.close();  // the last lines and statistics go out; then the counts are final
+    print_web_summary(*web);
+  }
   // after the statistics, so that a full disk never hides them
   if (!stats.recording_error.empty()) {
     std::fprintf(stderr, "sonarloop run: error: --record: %s\n", stats.recording_error.c_str());
@@ -285,17 +316,27 @@ options:
                          an unwritable place fails before the run)
   --pose-from SPEC       follow an external vehicle: can:IFACE, socketcand:HOST:PORT[:CHANNEL]
                          or udp:HOST:PORT (emulator/pose_message.md); pings pause while the
-                         pose is stale
+                         pose is stale. Each ping is rendered at the pose of its own time
+                         less --pose-delay, interpolated between the pose samples (UDP: at
+                         their time stamps), extrapolated when none is newer (counted)
+  --pose-delay S         that delay: the lag of the rendered pose behind the vehicle
+                         (default 0.1 s, one update at 10 Hz; 0: no lag, every ping
+                         extrapolated from the last two samples)
   --stale-after S        age beyond which the external pose is stale (default 2 s)
   --epoch UNIX_S         UTC of the mission start, seconds since 1970 (default: now; with
                          --rate max 1767225600 = 2026-01-01T00:00:00Z, for reproducible files)
   --classify MODEL       run the onboard consumer in-process on the pings (as `sonarloop
                          onboard` does on the UDP stream): detect, classify with MODEL (of
                          `sonarloop train`), one JSON contact report per object
-  --contacts FILE        write the contact reports there (default stderr)
+  --contacts FILE        write the contact reports there (default stderr); udp:HOST:PORT:
+                         one JSON line per UDP datagram there (`sonarloop autonomy`)
   --renderer R           profile (default: the heightfield profile renderer) or raytrace (the
                          Embree reference; it builds views of the seabed as the vehicle goes,
                          so a real-time run may drop pings while it does: docs/rendering.md)
+  --web HOST:PORT        serve the live operator view there (docs/web.md): waterfall, track
+                         and contacts (with --classify), statistics, pause; PORT alone binds
+                         127.0.0.1, port 0 a free port (the URL is printed). Read-only; a
+                         slow browser loses lines, never delays a ping
 
 examples:
   sonarloop run --duration 30 --udp 127.0.0.1:5600
@@ -304,6 +345,8 @@ examples:
   sonarloop run --can vcan0 --can log:nav.log --rate 2
   sonarloop run --pose-from udp:127.0.0.1:5700 --udp 127.0.0.1:5600 --stale-after 1
   sonarloop run --rate max --classify out/atr.slpca --contacts out/contacts.jsonl
+  sonarloop run --udp 127.0.0.1:5600 --web 8080     (then open http://127.0.0.1:8080/)
+  sonarloop run --classify out/atr.slpca --web 127.0.0.1:0
 )",
     run_run, 10};
 SONARLOOP_REGISTER_COMMAND(kRunCommand);

@@ -189,6 +189,14 @@ int run_scene(const std::vector<std::string>& argv) {
   w.field("water_depth_m", desc.water.depth_m);
   w.field("grid_spacing_m", img.spacing_m, 12);
   w.field("model_grid_spacing_m", d, 12);
+  w.field("frame",
+          "positions are [north, east] in metres from the scenario origin (latitude/longitude "
+          "in origin): the frame of truth.json and of the onboard consumer's contacts");
+  w.key("origin")
+      .begin_object()
+      .field("latitude_deg", desc.origin.latitude_deg, 9)
+      .field("longitude_deg", desc.origin.longitude_deg, 9)
+      .end_object();
   w.key("origin_m")
       .begin_array()
       .value(img.origin_m.x(), 12)

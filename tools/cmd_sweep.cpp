@@ -11,7 +11,6 @@
 #include <limits>
 #include <memory>
 #include <optional>
-#include <thread>
 
 #include "atr/fusion.h"
 #include "atr/sweep.h"
@@ -19,9 +18,13 @@
 #include "config/loader/sonar_loader.h"
 #include "sim/render/chip_renderer.h"
 #include "tools/args.h"
+#include "tools/chip_options.h"
+#include "tools/chip_ranks.h"
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
+#include "tools/mpi_world.h"
 #include "tools/progress.h"
+#include "tools/sweep_ranks.h"
 
 #ifndef SONARLOOP_SWEEP_PLOT_SCRIPT
 #define SONARLOOP_SWEEP_PLOT_SCRIPT "tools/plot_sweep.py"
@@ -93,16 +96,13 @@ void write_file(const fs::path& path, const std::string& text) {
   fs::rename(tmp, path);
 }
 
-// Renders jobs at one resolution slot, handing chips to `sink` in index order. Returns the
-// number of chips rendered (fewer after a stop request) and the wall time.
+// Renders chips 0..count-1 at one resolution slot (over the MPI ranks, if any: sweep_ranks.h),
+// handing them to `sink` in index order. Returns the number of chips rendered (fewer after a
+// stop request) and the wall time.
 std::size_t render_slot(const render::ChipRenderer& r, int slot, std::size_t count, int threads,
                         const std::function<void(const render::ChipImage&)>& sink, double* wall_s) {
-  std::vector<render::ChipJob> jobs(count);
-  for (std::size_t i = 0; i < count; ++i)
-    jobs[i] = render::ChipJob{i, slot};
   const auto t0 = Clock::now();
-  const std::size_t done =
-      render::render_chips(r, jobs, threads, sink, [] { return stop_requested(); });
+  const std::size_t done = render_sweep_chips(r, slot, count, threads, sink);
   *wall_s = seconds_since(t0);
   return done;
 }
@@ -192,6 +192,7 @@ bool run_experiment(const atr::SweepExperiment& e, RunContext& ctx,
         opt.p = c.p;
         opt.aspect_sectors = c.aspect_sectors;
         opt.skip_degenerate = true;
+        opt.class_metadata = sim_class_metadata();  // mine-like flags of the target types
         const auto t0 = Clock::now();
         opt.preprocess = c.preprocess;
         opt.reject_quantile = c.reject_quantile;
@@ -229,9 +230,9 @@ bool run_experiment(const atr::SweepExperiment& e, RunContext& ctx,
             ctx.bar->update(++ctx.chips_done);
           },
           &wall_s);
-      // thread-seconds per chip over both sets (including the seabed tiles made on the way;
-      // the classification in the sink overlaps the workers' rendering)
-      const double render_s_per_chip = (train_wall_s + wall_s) * ctx.threads /
+      // thread-seconds per chip over both sets and all ranks (including the seabed tiles made
+      // on the way; the classification in the sink overlaps the workers' rendering)
+      const double render_s_per_chip = (train_wall_s + wall_s) * ctx.threads * mpi::size() /
                                        static_cast<double>(got + std::max<std::size_t>(tested, 1));
       for (Trial& t : trials) {
         t.result->render_s_per_chip = render_s_per_chip;
@@ -279,6 +280,7 @@ bool run_fusion_experiment(const atr::SweepExperiment& e, RunContext& ctx,
       opt.p = c0.p;
       opt.skip_degenerate = true;
       opt.calibrate = true;
+      opt.class_metadata = sim_class_metadata();
       opt.preprocess = c0.preprocess;
       const auto t0 = Clock::now();
       atr::Classifier ch(atr::train_model(atr::training_set(hl, e, c0), opt));
@@ -333,7 +335,8 @@ bool run_fusion_experiment(const atr::SweepExperiment& e, RunContext& ctx,
           &wall);
       render_s += wall;
       for (atr::ConditionResult& r : rs_out) {
-        r.render_s_per_chip = render_s * ctx.threads / static_cast<double>(2 * (n_train + n_test));
+        r.render_s_per_chip =
+            render_s * ctx.threads * mpi::size() / static_cast<double>(2 * (n_train + n_test));
         r.train_s = train_s;
         r.classify_s_per_chip = tested ? classify_s / static_cast<double>(tested) : 0.0;
         r.complete = tested == n_test;
@@ -419,8 +422,8 @@ int run_sweep(const std::vector<std::string>& argv) {
   const std::string ext = fs::path(sonar_arg).extension().string();
   s.sonar = ext == ".yaml" || ext == ".yml" ? config::load_sonar(sonar_arg)
                                             : config::builtin_sonar(sonar_arg);
-  ctx.threads = static_cast<int>(args.get_int("--threads", 1, 256)
-                                     .value_or(std::max(1u, std::thread::hardware_concurrency())));
+  ctx.threads =
+      static_cast<int>(args.get_int("--threads", 1, 256).value_or(mpi::default_threads()));
   ctx.out_dir = args.get_or("--out", "sweep_out");
 
   std::vector<std::string> names = args.get_all("--experiment");
@@ -438,6 +441,9 @@ int run_sweep(const std::vector<std::string>& argv) {
       throw UsageError("--experiment " + n + ": no condition left (e.g. every p >= --train-count)");
     }
   }
+  // under mpirun: rank 0 runs the sweep, the others render their share of its chips
+  mpi::start();
+  if (!mpi::is_root()) return serve_sweep(experiments, s, ctx.threads) ? 0 : 130;
   fs::create_directories(ctx.out_dir);
 
   double total = 0.0;
@@ -463,9 +469,9 @@ int run_sweep(const std::vector<std::string>& argv) {
     bar.finish();
   }
   const double secs = seconds_since(t0);
-  std::printf("rendered %.0f chips in %.1f s (%.1f chips/s, %d threads); results in %s\n",
+  std::printf("rendered %.0f chips in %.1f s (%.1f chips/s, %d threads%s); results in %s\n",
               ctx.chips_done, secs, ctx.chips_done / std::max(secs, 1e-9), ctx.threads,
-              ctx.out_dir.string().c_str());
+              ranks_note().c_str(), ctx.out_dir.string().c_str());
   if (stopped) {
     std::fprintf(stderr,
                  "sonarloop sweep: interrupted; the CSV files in '%s' hold every condition "
@@ -552,12 +558,18 @@ options:
 Ctrl-C stops after the chip in progress; the CSV files keep every condition scored so far.
 Same --seed and counts give the same counts and rates on any --threads (times differ).
 
+On a cluster (MPI, when this build found it: docs/sweep.md): run the same command under
+`mpirun -np N`. Every rank renders every N-th chip of each chip set with --threads threads
+(default: the cores mpirun binds it to); rank 0 trains, scores, prints and writes, with the
+same counts and confusion files as one process (only the times differ).
+
 examples:
   sonarloop sweep --experiment fig11 --out out/sweep
   sonarloop sweep --experiment fig11 --resolutions-cm 5,20 --train-count 40 --test-count 50
   sonarloop sweep --experiment all --test-count 1000 --out /tmp/sweep_big
   sonarloop sweep --experiment ablation --test-count 1000 --out /tmp/ablation
   sonarloop sweep --experiment fig13 --crop auto --out /tmp/fig13_crop
+  mpirun -np 8 sonarloop sweep --experiment fig11 --test-count 10000 --out /scratch/fig11
 )",
     run_sweep, 65};
 SONARLOOP_REGISTER_COMMAND(kSweepCommand);

@@ -1,7 +1,9 @@
-// sonarloop train: train the PCA (eigen-subspace) classifier on a folder of PNG chips.
+// sonarloop train: train the PCA (eigen-subspace) classifier on a folder of PNG or JPEG chips.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -9,6 +11,7 @@
 #include "atr/model_file.h"
 #include "atr/subspace_classifier.h"
 #include "tools/args.h"
+#include "tools/chip_options.h"
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
 #include "tools/progress.h"
@@ -16,12 +19,50 @@
 namespace sonarloop::tools {
 namespace {
 
+// Prints one class's (or group's) line of the summary.
+void print_class(const atr::ClassModel& c, const char* kind) {
+  int chips = 0;
+  std::string ranks;
+  for (const auto& s : c.subspaces) {
+    chips += s.train_count;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%s%d", ranks.empty() ? "" : " ", s.rank());
+    ranks += buf;
+  }
+  char height[32] = "height ?";
+  if (c.height_m) std::snprintf(height, sizeof height, "height %.2f m", *c.height_m);
+  std::printf("  %-5s %-20s %-9s %-13s %5d chips, %zu subspace%s, rank %s", kind, c.name.c_str(),
+              c.mine_like ? "mine-like" : "non-mine", height, chips, c.subspaces.size(),
+              c.subspaces.size() == 1 ? "" : "s", ranks.c_str());
+  if (std::isfinite(c.reject_distance))
+    std::printf(", unknown beyond distance %.4g", static_cast<double>(c.reject_distance));
+  std::printf("\n");
+}
+
+// A progress bar per training stage (reading chips, fitting subspaces).
+struct StageProgress {
+  std::string stage;
+  std::unique_ptr<Progress> bar;
+
+  void operator()(std::string_view s, std::size_t done, std::size_t total) {
+    if (!bar || s != stage) {
+      bar.reset();
+      stage = s;
+      bar = std::make_unique<Progress>(stage, static_cast<double>(total));
+    }
+    bar->update(static_cast<double>(done));
+  }
+};
+
 int run_train(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--out"},
                          {"--p"},
                          {"--aspect-sectors"},
                          {"--group-subspaces", false},
+                         {"--mine-like"},
                          {"--mine-classes"},
+                         {"--height"},
+                         {"--size"},
                          {"--skip-bad-chips", false},
                          {"--crop"},
                          {"--multilook"},
@@ -36,12 +77,17 @@ int run_train(const std::vector<std::string>& argv) {
   opt.aspect_sectors = static_cast<int>(args.get_int("--aspect-sectors", 1, 360).value_or(1));
   opt.group_subspaces = args.has("--group-subspaces");
   opt.skip_degenerate = args.has("--skip-bad-chips");
-  if (const auto m = args.get("--mine-classes")) opt.mine_classes = split_comma_list(*m);
   opt.preprocess = preprocess_options(args);
   opt.reject_quantile = args.get_double("--reject-quantile", 0.0, 0.9999).value_or(0.0);
+  const std::optional<atr::ChipSize> size = chip_size_option(args);
 
+  // list the chips; their pixels are read one at a time while training
   const auto t0 = std::chrono::steady_clock::now();
-  const atr::ChipFolder folder = atr::read_chip_folder(args.positionals()[0]);
+  atr::ChipFolderOptions fo;
+  fo.read_pixels = false;
+  fo.skip_bad = opt.skip_degenerate;
+  const atr::ChipFolder folder = atr::read_chip_folder(args.positionals()[0], fo);
+  opt.class_metadata = class_metadata_options(args, folder.classes);
   if (opt.aspect_sectors > 1 && folder.aspect_count < folder.chips.size()) {
     throw std::runtime_error(std::to_string(opt.aspect_sectors) +
                              " aspect sectors need an aspect angle for every "
@@ -51,47 +97,40 @@ int run_train(const std::vector<std::string>& argv) {
                              std::to_string(folder.chips.size()) + " chips" +
                              (folder.has_labels_csv ? "" : " (there is no labels.csv)"));
   }
-  const double read_s = seconds_since(t0);
-  const auto t1 = std::chrono::steady_clock::now();
+  for (const auto& s : folder.skipped)
+    std::fprintf(stderr, "skipped '%s': %s\n", s.source.c_str(), s.reason.c_str());
+  atr::Chip chip;
+  const atr::ChipLoader load = [&](std::size_t i) {
+    chip = atr::read_folder_chip(folder, i, size);
+    return chip.view();
+  };
+  StageProgress progress;
+  opt.progress = std::ref(progress);
   atr::TrainReport report;
-  const atr::Model model = atr::train_model(folder.chips, opt, &report);
-  const double train_s = seconds_since(t1);
+  const atr::Model model = atr::train_model(folder.chips, load, opt, &report);
+  progress.bar.reset();
+  const double train_s = seconds_since(t0);
   atr::save_model(model, *out);
 
-  for (const auto& s : report.skipped) {
+  for (const auto& s : report.skipped)
     std::fprintf(stderr, "skipped '%s': %s\n", s.source.c_str(), s.reason.c_str());
-  }
-  std::printf("trained on %zu chips of %d x %d pixels from '%s' (read %.2f s, train %.2f s)\n",
+  std::printf("trained on %zu chips of %d x %d pixels%s from '%s' (read and train %.2f s)\n",
               folder.chips.size() - report.skipped.size(), model.chip_width, model.chip_height,
-              folder.root.c_str(), read_s, train_s);
+              size ? " (resampled)" : "", folder.root.c_str(), train_s);
   std::printf("p = %d, %d aspect sector%s%s; pre-processing: %s (features %d x %d)\n", model.p,
               model.aspect_sectors, model.aspect_sectors == 1 ? "" : "s",
               model.groups.empty() ? "" : ", with mine / non_mine group subspaces",
               atr::preprocess_label(model.preprocess).c_str(), model.feature_width(),
               model.feature_height());
-  auto print_class = [](const atr::ClassModel& c, const char* kind) {
-    int chips = 0;
-    std::string ranks;
-    for (const auto& s : c.subspaces) {
-      chips += s.train_count;
-      char buf[64];
-      std::snprintf(buf, sizeof buf, "%s%d", ranks.empty() ? "" : " ", s.rank());
-      ranks += buf;
-    }
-    std::printf("  %-5s %-20s %-9s %5d chips, %zu subspace%s, rank %s", kind, c.name.c_str(),
-                c.mine_like ? "mine-like" : "non-mine", chips, c.subspaces.size(),
-                c.subspaces.size() == 1 ? "" : "s", ranks.c_str());
-    if (std::isfinite(c.reject_distance))
-      std::printf(", unknown beyond distance %.4g", static_cast<double>(c.reject_distance));
-    std::printf("\n");
-  };
   for (const auto& c : model.classes)
     print_class(c, "class");
   for (const auto& g : model.groups)
     print_class(g, "group");
-  if (!report.skipped.empty()) {
-    std::printf("skipped %zu degenerate chips (listed on stderr)\n", report.skipped.size());
+  if (!model.has_mine_like_class()) {
+    std::printf("no class is mine-like: no mine / non-mine decision (see --mine-like)\n");
   }
+  const std::size_t skipped = folder.skipped.size() + report.skipped.size();
+  if (skipped) std::printf("skipped %zu bad chips (listed on stderr)\n", skipped);
   std::printf("wrote %s\n", out->c_str());
   return 0;
 }
@@ -99,22 +138,31 @@ int run_train(const std::vector<std::string>& argv) {
 }  // namespace
 
 const Command kTrainCommand{
-    "train", "train the PCA (eigen-subspace) classifier on PNG chips, one subfolder per class",
+    "train",
+    "train the PCA (eigen-subspace) classifier on PNG or JPEG chips, one subfolder per class",
     R"(usage: sonarloop train CHIPS_DIR --out MODEL [options]
 
 Trains the eigen-subspace classifier of Pailhas, Petillot & Capus (2010), Section 3.2: for each
 class, every chip is normalised by its own mean and standard deviation (eq. 9), the class mean
 image is taken (eq. 8), and the p leading eigenvectors of the centred chips are found from the
-k x k Gram matrix. Classification (sonarloop classify) picks the class whose subspace leaves the
-smallest residual (eq. 10). A class with k <= p chips keeps rank k - 1.
+k x k Gram matrix (or the pixel covariance when a class has more chips than pixels).
+Classification (sonarloop classify) picks the class whose subspace leaves the smallest residual
+(eq. 10). A class with k <= p chips keeps rank k - 1.
 
-CHIPS_DIR holds one subfolder per class, named after the class, with PNG chips of one size
-inside (any PNG; colour is converted to grey). An optional CHIPS_DIR/labels.csv with columns
-file,class,aspect_deg,... gives each chip's target aspect angle in degrees (file is the path
-relative to CHIPS_DIR, e.g. manta/001.png). Real data works the same way as synthetic data.
+CHIPS_DIR holds one subfolder per class, named after the class, with PNG or JPEG chips inside
+(.png, .jpg, .jpeg; colour is converted to grey). All chips must have one size, or --size
+resamples them. An optional CHIPS_DIR/labels.csv with columns file,class,aspect_deg,... gives
+each chip's target aspect angle in degrees (file is the path relative to CHIPS_DIR, e.g.
+manta/001.png). Real data works the same way as synthetic data. Chips are read one at a time:
+memory holds the normalised chips once, as float (about 4 bytes a pixel), plus one class's
+eigen-problem.
 
-Classes named manta, rockan, cylinder or cuboid are mine-like (Section 4.1.2), other names are
-not, unless --mine-classes says otherwise.
+Class metadata, stored in the model: whether a class is mine-like (Section 4.1.2) and the height
+of its objects above the seabed (`sonarloop onboard` places a contact with it). Classes named
+after a simulated target type take its values (manta, rockan, cylinder and cuboid are mine-like;
+heights from the target table). Any other class is not mine-like and of unknown height (onboard
+then uses the height measured from the shadow). When no class is mine-like, classify and
+onboard make no mine / non-mine decision.
 
 options:
   --out MODEL          model file to write (versioned binary, see atr/model_file.h)
@@ -124,9 +172,14 @@ options:
                        aspect_deg in labels.csv for every chip)
   --group-subspaces    also train pooled "mine" and "non_mine" subspaces for the mine / non-mine
                        decision (default: the group of the identified class)
-  --mine-classes A,B   the mine-like classes, comma-separated (replaces the default)
-  --skip-bad-chips     skip degenerate chips (constant, non-finite), listing them, instead of
-                       stopping with an error
+  --mine-like A,B      the mine-like classes, comma-separated; replaces the simulator's flags
+                       (--mine-like "" makes none mine-like; --mine-classes is the old name)
+  --height A=H,B=H     height of each class's objects in metres (0 to 100), over the simulator's
+  --size WxH           resample every chip to W x H pixels (area average) before training;
+                       classify and onboard then need chips of that size (classify --size)
+  --skip-bad-chips     skip bad chips instead of stopping at the first: unreadable files,
+                       files that are not PNG or JPEG, nested folders, chips of another size
+                       than the first, constant or non-finite chips; one line each on stderr
 
 chip pre-processing before eq. 9 (stored in the model; classify and onboard apply it too;
 default none, as the paper; measured by `sonarloop sweep --experiment ablation`):
@@ -144,11 +197,14 @@ open-set rejection (ours; default off, as the paper):
                        cross-validation over the training chips (Q = 0.95: about 5 % of a known
                        class's chips rejected); classify and onboard then report unknown
 
+A progress bar shows on stderr when training takes more than a second.
+
 examples:
   sonarloop train out/chips --out out/atr.slpca
   sonarloop train out/chips --out out/atr8.slpca --aspect-sectors 8 --p 10
   sonarloop train out/chips --out out/atr_crop.slpca --crop 0.4 --reject-quantile 0.95
-  sonarloop train ~/survey/chips --out survey.slpca --mine-classes mine,torpedo
+  sonarloop train ~/survey/chips --out survey.slpca --size 64x64 --skip-bad-chips \
+      --mine-like mine,torpedo --height mine=0.5,torpedo=0.53,rock=0.8
 )",
     run_train, 60};
 SONARLOOP_REGISTER_COMMAND(kTrainCommand);

@@ -7,6 +7,7 @@
 
 #include "tools/args.h"
 #include "tools/commands.h"
+#include "tools/mpi_world.h"
 
 namespace {
 
@@ -59,10 +60,11 @@ int main(int argc, char** argv) {
     } catch (const sonarloop::tools::UsageError& e) {
       std::fprintf(stderr, "sonarloop %s: %s\n(see 'sonarloop %s --help')\n", c.name, e.what(),
                    c.name);
-      return 2;
+      return sonarloop::tools::mpi::end_after_error(2);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "sonarloop %s: error: %s\n", c.name, e.what());
-      return 1;
+      // under mpirun the other ranks would wait for this one forever: end them all
+      return sonarloop::tools::mpi::end_after_error(1);
     }
   }
   std::fprintf(stderr, "sonarloop: unknown command '%s' (see 'sonarloop --help')\n", name.c_str());

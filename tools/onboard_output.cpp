@@ -7,6 +7,7 @@
 
 #include "atr/model_file.h"
 #include "drivers/json/json_writer.h"
+#include "tools/chip_options.h"
 
 namespace sonarloop::tools {
 namespace {
@@ -14,6 +15,8 @@ namespace {
 // Pings queued between the emulator and the in-process consumer: 4096 (4.5 KB each for the
 // default sonar: 18 MB), about 4.5 minutes of pings at 15 per second.
 constexpr std::size_t kInProcessQueueSlots = 4096;
+// ContactWriter's destination prefix for UDP.
+constexpr const char* kUdpPrefix = "udp:";
 
 unsigned long long ull(std::uint64_t v) {
   return static_cast<unsigned long long>(v);
@@ -22,7 +25,11 @@ unsigned long long ull(std::uint64_t v) {
 }  // namespace
 
 ContactWriter::ContactWriter(const std::optional<std::string>& path, std::FILE* fallback) {
-  if (path) {
+  if (path && path->rfind(kUdpPrefix, 0) == 0) {
+    udp_ = std::make_unique<net::UdpSender>(
+        net::parse_host_port(std::string_view(*path).substr(std::strlen(kUdpPrefix))));
+    name_ = *path;
+  } else if (path) {
     f_ = std::fopen(path->c_str(), "wb");
     if (!f_) {
       throw std::runtime_error("cannot create contacts file '" + *path +
@@ -42,6 +49,11 @@ ContactWriter::~ContactWriter() {
 
 void ContactWriter::write(const atr::Contact& c) {
   const std::string line = atr::contact_json(c);
+  if (udp_) {
+    // a missing receiver is counted by the sender, never an error
+    udp_->send(std::span(reinterpret_cast<const std::uint8_t*>(line.data()), line.size()));
+    return;
+  }
   if (std::fprintf(f_, "%s\n", line.c_str()) < 0 || std::fflush(f_) != 0) {
     throw std::runtime_error("cannot write to " + name_ + ": " + std::strerror(errno));
   }
@@ -53,7 +65,7 @@ std::string ContactWriter::describe() const {
 
 std::optional<atr::Model> load_model_if(const std::optional<std::string>& path) {
   if (!path) return std::nullopt;
-  return atr::load_model(*path);
+  return load_model_with_metadata(*path);  // older model files: heights of simulated types
 }
 
 void print_onboard_stats(const char* who, const atr::OnboardStats& s,
@@ -136,9 +148,15 @@ std::string onboard_stats_json(const atr::OnboardStats& s, const atr::PacketQueu
 InProcessOnboard::InProcessOnboard(atr::Model model, const atr::OnboardOptions& options,
                                    const std::optional<std::string>& contacts_path,
                                    std::span<const std::uint8_t> file_header,
-                                   std::size_t packet_bytes, bool lossless)
+                                   std::size_t packet_bytes, bool lossless,
+                                   ContactObserver observer)
     : contacts_(contacts_path, stderr),
-      pipeline_(std::move(model), options, [this](const atr::Contact& c) { contacts_.write(c); }),
+      observer_(std::move(observer)),
+      pipeline_(std::move(model), options,
+                [this](const atr::Contact& c) {
+                  contacts_.write(c);
+                  if (observer_) observer_(c);
+                }),
       queue_(kInProcessQueueSlots, std::max(packet_bytes, file_header.size())),
       lossless_(lossless) {
   queue_.push(file_header, true);

@@ -3,6 +3,7 @@
 // atr/contact.h) and the end-of-run statistics of the onboard pipeline.
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -14,29 +15,35 @@
 #include "atr/onboard_pipeline.h"
 #include "atr/packet_queue.h"
 #include "atr/subspace_classifier.h"
+#include "drivers/net/udp_sender.h"
 
 namespace sonarloop::tools {
 
 // Contact reports, one JSON line each, flushed line by line (a reader sees them live). To a file
-// (created or truncated), or to an already open stream (stdout, stderr).
+// (created or truncated), to an already open stream (stdout, stderr), or with a path
+// "udp:HOST:PORT" as UDP datagrams there, one contact's JSON line (no newline) per datagram
+// (atr/contact.h; what `sonarloop autonomy --contacts` reads).
 class ContactWriter {
  public:
-  // Throws std::runtime_error naming the file if it cannot be created.
+  // Throws std::runtime_error naming the file if it cannot be created, std::invalid_argument
+  // for a malformed udp:HOST:PORT.
   explicit ContactWriter(const std::optional<std::string>& path, std::FILE* fallback);
   ~ContactWriter();
   ContactWriter(const ContactWriter&) = delete;
   ContactWriter& operator=(const ContactWriter&) = delete;
 
   void write(const atr::Contact& c);
-  std::string describe() const;  // the file name, or "stdout" / "stderr"
+  std::string describe() const;  // the file name, "stdout" / "stderr", or "udp:HOST:PORT"
 
  private:
+  std::unique_ptr<net::UdpSender> udp_;
   std::FILE* f_ = nullptr;
   bool owned_ = false;
   std::string name_;
 };
 
-// Loads a model file, or nullopt when no path is given.
+// Loads a model file (older formats: class heights from the simulator, tools/chip_options.h),
+// or nullopt when no path is given.
 std::optional<atr::Model> load_model_if(const std::optional<std::string>& path);
 
 // The end-of-run statistics on stderr, a few lines (`who` prefixes the first).
@@ -52,11 +59,13 @@ std::string onboard_stats_json(const atr::OnboardStats& s, const atr::PacketQueu
 // scenario); paced, a full queue drops the ping (counted) rather than delay the emulator.
 class InProcessOnboard {
  public:
+  // Also told every contact (on the consumer's thread, or in finish()), e.g. `run --web`.
+  using ContactObserver = std::function<void(const atr::Contact&)>;
   // Starts the consumer thread; feeds `file_header` (the emulator's XTF file header) first.
   InProcessOnboard(atr::Model model, const atr::OnboardOptions& options,
                    const std::optional<std::string>& contacts_path,
                    std::span<const std::uint8_t> file_header, std::size_t packet_bytes,
-                   bool lossless);
+                   bool lossless, ContactObserver observer = {});
   ~InProcessOnboard();
   InProcessOnboard(const InProcessOnboard&) = delete;
   InProcessOnboard& operator=(const InProcessOnboard&) = delete;
@@ -70,6 +79,7 @@ class InProcessOnboard {
 
  private:
   ContactWriter contacts_;
+  ContactObserver observer_;
   atr::OnboardPipeline pipeline_;
   atr::PacketQueue queue_;
   bool lossless_;

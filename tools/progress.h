@@ -1,7 +1,7 @@
 #pragma once
 // A progress bar on stderr for long jobs: silent for the first second, then a bar redrawn at
 // most 10 times a second on a terminal, or a plain line every 5 s when stderr is a file.
-// Tools may read the wall clock (design.md: only sim/ must not).
+// Tools may read the wall clock (docs/design.md: only sim/ must not).
 #include <chrono>
 #include <string>
 

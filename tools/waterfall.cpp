@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "drivers/image/png.h"
 
@@ -48,25 +49,39 @@ std::uint8_t grey(float amplitude, const Levels& l) {
   return static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(v, 0.0, 1.0)));
 }
 
-}  // namespace
-
-void write_waterfall_png(const std::string& path, const WaterfallData& w) {
+// The slant-range image of per-sample values laid out as WaterfallData::amplitude (pings x
+// (2 * bins)): the last ping at the top, port mirrored to the left.
+template <typename T, typename ToPixel>
+void write_slant_png(const std::string& path, const WaterfallData& w, const std::vector<T>& values,
+                     ToPixel to_pixel) {
   const int n = w.pings();
   const int width = 2 * w.bins;
-  const Levels l = levels_of(w);
   std::vector<std::uint8_t> px(static_cast<std::size_t>(n) * static_cast<std::size_t>(width));
   for (int p = 0; p < n; ++p) {
-    const float* row =
-        w.amplitude.data() + static_cast<std::size_t>(p) * static_cast<std::size_t>(width);
+    const T* row = values.data() + static_cast<std::size_t>(p) * static_cast<std::size_t>(width);
     std::uint8_t* out =
         px.data() + static_cast<std::size_t>(n - 1 - p) * static_cast<std::size_t>(width);
     for (int side = 0; side < 2; ++side) {
       for (int b = 0; b < w.bins; ++b) {
-        out[waterfall_column(w.bins, side, b)] = grey(row[side * w.bins + b], l);
+        out[waterfall_column(w.bins, side, b)] = to_pixel(row[side * w.bins + b]);
       }
     }
   }
   image::write_png_gray8(path, width, std::max(n, 1), px);
+}
+
+}  // namespace
+
+void write_waterfall_png(const std::string& path, const WaterfallData& w) {
+  const Levels l = levels_of(w);
+  write_slant_png(path, w, w.amplitude, [&](float a) { return grey(a, l); });
+}
+
+void write_label_png(const std::string& path, const WaterfallData& w) {
+  if (w.label.size() != w.amplitude.size()) {
+    throw std::logic_error("write_label_png: the waterfall was rendered without labels");
+  }
+  write_slant_png(path, w, w.label, [](std::uint8_t v) { return v; });
 }
 
 void write_ground_waterfall_png(const std::string& path, const WaterfallData& w) {

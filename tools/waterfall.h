@@ -15,6 +15,9 @@ struct WaterfallData {
   double bin_size_m = 0.0;
   std::vector<float> amplitude;    // pings x (2 * bins): [port near..far | stbd near..far]
   std::vector<double> altitude_m;  // per ping, for the ground-range correction
+  // pings x (2 * bins), laid out as amplitude: the ping renderer's per-bin labels (kLabelSeabed,
+  // kLabelHighlight, kLabelShadow of sim/render/ping_renderer.h); empty when not rendered
+  std::vector<std::uint8_t> label;
   int pings() const { return bins > 0 ? static_cast<int>(amplitude.size() / (2 * bins)) : 0; }
 };
 
@@ -24,6 +27,9 @@ inline int waterfall_column(int bins, int side, int bin) {
 }
 
 void write_waterfall_png(const std::string& path, const WaterfallData& w);
+// The labels as an 8-bit PNG aligned pixel for pixel with write_waterfall_png's image; pixel
+// values are the labels themselves (0, 1, 2), not visible grey levels.
+void write_label_png(const std::string& path, const WaterfallData& w);
 // Ground range 0 .. max on each side at the bin size; samples nearer than the altitude (the
 // water column) are left black.
 void write_ground_waterfall_png(const std::string& path, const WaterfallData& w);

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """xtf_stats.py: the image statistics used to judge sidescan realism, per channel, for any XTF.
 
-Reads one or more XTF files with its own reader (the byte layouts of shared/docs/formats.md §1:
+Reads one or more XTF files with its own reader (the byte layouts of docs/formats.md §1:
 the 1024-byte file header with its CHANINFO blocks, then packets that start with magic 0xFACE
 and carry their own length; sonar packets, HeaderType 0, are a 256-byte ping header then per
 channel a 64-byte channel header and NumSamples samples). Other packet types are skipped.

@@ -350,7 +350,7 @@ void check_rules(const Field& f, const SonarDesc& d) {
                 "more than " + approx(d.chirp_bandwidth_hz / 2e3) + why);
     }
     // range resolution c/(2B) at most kMaxBinsPerChirpResolution bins
-    // (physics.md §3: chirp of bandwidth B after matched filtering, δR = c/(2B))
+    // (docs/physics.md §3: chirp of bandwidth B after matched filtering, δR = c/(2B))
     const double resolution_m = c / (2.0 * d.chirp_bandwidth_hz);
     const double limit_m = kMaxBinsPerChirpResolution * d.bin_size_m;
     if (resolution_m > limit_m * (1.0 + kRuleSlack)) {

@@ -42,7 +42,8 @@ namespace sonarloop::config {
 inline constexpr std::string_view kDefaultSonarPreset = "pailhas_strip";
 
 // Nominal speed of sound for the sonar's cross-field rules, m/s. Sea water ranges about
-// 1450-1550 m/s (physics.md §1); the renderer uses the scenario water's Francois-Garrison value.
+// 1450-1550 m/s (docs/physics.md §1); the renderer uses the scenario water's
+// Francois-Garrison value.
 inline constexpr double kNominalSoundSpeed_m_s = 1500.0;
 
 // At most this many range samples per side (see above).

@@ -1,7 +1,7 @@
 #pragma once
 // A small validation toolkit over yaml-cpp, shared by every config loader (scene, sonar,
-// vehicle, ...). design.md, "Rules of the house": bad input gets a clear error naming the file,
-// the key and what is allowed.
+// vehicle, ...). docs/design.md, "Rules of the house": bad input gets a clear error naming the
+// file, the key and what is allowed.
 //
 // A Field wraps one YAML node together with the file it came from and its key path
 // ("seabed.regions[1].texture.ripples.wavelength_m"). Loaders read a map with typed getters that

@@ -1,6 +1,6 @@
 #pragma once
-// CAN transports (style.md habit 6): one small interface for every way sonarloop puts CAN frames
-// somewhere, and a factory for the `--can SPEC` option (design.md, "Command line").
+// CAN transports (docs/style.md habit 6): one small interface for every way sonarloop puts CAN
+// frames somewhere, and a factory for the `--can SPEC` option (docs/design.md, "Command line").
 //
 //   vcan0, can0, ...        SocketCAN raw socket on that interface (socketcan.h)
 //   socketcand:HOST:PORT    a socketcand-compatible TCP server in rawmode (socketcand_server.h)

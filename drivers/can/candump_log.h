@@ -1,5 +1,5 @@
 #pragma once
-// candump log files (formats.md §3): the line format of can-utils `candump -l`, read by
+// candump log files (docs/formats.md §3): the line format of can-utils `candump -l`, read by
 // can-utils (log2asc, canplayer), canboat and python-can's CanutilsLogReader.
 //
 // Writer: one line per frame, no header or comments (python-can rejects them):

@@ -1,5 +1,5 @@
 #pragma once
-// SocketCAN raw transport (formats.md §4.1): socket(PF_CAN, SOCK_RAW, CAN_RAW) bound to one
+// SocketCAN raw transport (docs/formats.md §4.1): socket(PF_CAN, SOCK_RAW, CAN_RAW) bound to one
 // interface (vcan0, can0, ...), classic frames (struct can_frame, CAN_MTU 16 bytes), extended ids
 // sent with CAN_EFF_FLAG.
 //

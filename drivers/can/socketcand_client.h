@@ -1,8 +1,8 @@
 #pragma once
-// A socketcand client in rawmode (formats.md §4.4): connects to a socketcand server (sonarloop's
-// SocketcandServer or the real socketcand daemon), performs "< hi >" / "< open CHANNEL >" /
-// "< rawmode >", then yields the frames the server pushes and sends frames with
-// "< send ID DLC B0 .. >". Used for hardware-in-the-loop input and to test the server.
+// A socketcand client in rawmode (docs/formats.md §4.4): connects to a socketcand server
+// (sonarloop's SocketcandServer or the real socketcand daemon), performs "< hi >" /
+// "< open CHANNEL >" / "< rawmode >", then yields the frames the server pushes and sends frames
+// with "< send ID DLC B0 .. >". Used for hardware-in-the-loop input and to test the server.
 //
 // The byte stream is cut into "< ... >" elements, so it does not matter how the server's writes
 // are split or coalesced. "< error ... >" elements are counted and skipped.

@@ -1,12 +1,12 @@
 #pragma once
-// socketcand ASCII protocol pieces shared by the server and the client (formats.md §4.4).
+// socketcand ASCII protocol pieces shared by the server and the client (docs/formats.md §4.4).
 // Every element is "< ... >"; in rawmode the server sends
 //   \n< frame 09F80123 1699999999.123456 00E6B523B1AC6A06 >
 // (id %08X for 29-bit, %03X for 11-bit; time SEC.USEC; data uppercase hex without spaces). The
 // newline goes BEFORE each frame: python-can 4.1 drops the one character after the last complete
 // element it parses from a read, so without a separator a frame split across recv() calls loses
 // its '<', and with a trailing "\n" several frames in one read leave a lone "\n" that it logs as
-// "Bad data: No opening < found" (formats.md 4.4 has the measurement). The leading "\n" is the
+// "Bad data: No opening < found" (docs/formats.md 4.4 has the measurement). The leading "\n" is the
 // character it drops. The client sends
 //   < send 09F80123 8 00 E6 B5 23 B1 AC 6A 06 >
 // (python-can 4.1 writes the id unpadded and the bytes as lowercase hex without zero padding:

@@ -1,5 +1,5 @@
 #pragma once
-// A socketcand-compatible TCP server in rawmode (formats.md §4.4): python-can's
+// A socketcand-compatible TCP server in rawmode (docs/formats.md §4.4): python-can's
 // `can.Bus(interface="socketcand", host=..., port=..., channel="vcan0")`, socketcand clients
 // and SocketcandClient read the frames sonarloop sends, and can send frames back.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// NMEA 2000 29-bit CAN identifiers (ISO 11783 / SAE J1939 layout; formats.md §2.1).
+// NMEA 2000 29-bit CAN identifiers (ISO 11783 / SAE J1939 layout; docs/formats.md §2.1).
 //
 //   bits 28-26 priority (0 highest .. 7) | 25 reserved (EDP) | 24 data page | 23-16 PDU format PF
 //   | 15-8 PDU specific PS | 7-0 source address SA

@@ -1,5 +1,5 @@
 #pragma once
-// NMEA 2000 field encoding (formats.md §2.2, canboat FieldTypes): little-endian bit fields
+// NMEA 2000 field encoding (docs/formats.md §2.2, canboat FieldTypes): little-endian bit fields
 // counted from bit 0 of byte 0, scaled integers with a resolution, reserved bits all ones, and
 // "top of range" sentinels.
 //

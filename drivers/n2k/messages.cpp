@@ -14,7 +14,7 @@ constexpr std::int64_t kNsPerSecond = 1'000'000'000;
 constexpr std::int64_t kNsPerDay = 86400 * kNsPerSecond;
 constexpr std::int64_t kNsPerTimeStep = 100'000;  // TIME resolution 0.0001 s
 
-// Field layouts of formats.md §2.3 (canboat canboat.json): bits, signed, resolution, range.
+// Field layouts of docs/formats.md §2.3 (canboat canboat.json): bits, signed, resolution, range.
 constexpr ScaledField kLatitude{32, true, 1e-7, -90.0, 90.0, OutOfRange::kClamp};
 constexpr ScaledField kLongitude{32, true, 1e-7, -180.0, 180.0, OutOfRange::kWrap};
 // unsigned angles 0..2pi, signed angles -pi..pi, both 1e-4 rad

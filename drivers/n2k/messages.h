@@ -1,16 +1,16 @@
 #pragma once
-// The NMEA 2000 navigation PGNs sonarloop publishes (formats.md §2.3), as plain structs with pure,
-// allocation-free encode/decode to single 8-byte CAN frames.
+// The NMEA 2000 navigation PGNs sonarloop publishes (docs/formats.md §2.3), as plain structs with
+// pure, allocation-free encode/decode to single 8-byte CAN frames.
 //
 // Units are SI (angles in radians, speeds in m/s, depths in m, time of day in s); latitude and
 // longitude stay in degrees and say so. Every NUMBER field is std::optional: nullopt <-> the
-// field's "not available" sentinel (formats.md §2.2). Encoding rounds to the nearest resolution
-// step and saturates out-of-range values (angles and longitude wrap), so a real value never
-// becomes a sentinel; reserved bits are written as ones. SIDs are passed through raw
-// (0..252, kSidNotAvailable = 255).
+// field's "not available" sentinel (docs/formats.md §2.2). Encoding rounds to the nearest
+// resolution step and saturates out-of-range values (angles and longitude wrap), so a real value
+// never becomes a sentinel; reserved bits are written as ones. SIDs are passed through raw (0..252,
+// kSidNotAvailable = 255).
 //
-// Example (formats.md §2.4): PositionRapidUpdate{59.9123456, 10.7654321} from source 0x23 encodes
-// to 09F80123#00E6B523B1AC6A06.
+// Example (docs/formats.md §2.4): PositionRapidUpdate{59.9123456, 10.7654321} from source 0x23
+// encodes to 09F80123#00E6B523B1AC6A06.
 //
 // Decoding checks that the frame is extended, carries the expected PGN and has 8 data bytes;
 // anything else is a DecodeError (never an exception). Reserved bits are not checked.

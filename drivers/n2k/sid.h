@@ -1,7 +1,7 @@
 #pragma once
-// NMEA 2000 sequence id (SID, formats.md §2.2): ties together PGNs sampled at the same instant.
-// Values run 0..252 and wrap; 255 means "not available". Increment once per sample cycle, give
-// every PGN of that cycle the same value. Not thread-safe: one counter per publishing thread.
+// NMEA 2000 sequence id (SID, docs/formats.md §2.2): ties together PGNs sampled at the same
+// instant. Values run 0..252 and wrap; 255 means "not available". Increment once per sample cycle,
+// give every PGN of that cycle the same value. Not thread-safe: one counter per publishing thread.
 #include <cstdint>
 
 namespace sonarloop::n2k {

@@ -97,7 +97,7 @@ class FieldReader {
   std::span<const std::uint8_t> b_;
 };
 
-// XTFFILEHEADER bytes 0-255 (formats.md 1.2).
+// XTFFILEHEADER bytes 0-255 (docs/formats.md 1.2).
 template <class IO, class H>
 void file_header_fields(IO& io, H& h) {
   io.field(0, h.file_format);
@@ -135,7 +135,7 @@ void file_header_fields(IO& io, H& h) {
   io.field(252, h.mru_offset_roll_deg);
 }
 
-// CHANINFO, offsets relative to its start (formats.md 1.3).
+// CHANINFO, offsets relative to its start (docs/formats.md 1.3).
 template <class IO, class C>
 void chan_info_fields(IO& io, C& c) {
   io.field(0, c.type_of_channel);
@@ -162,7 +162,7 @@ void chan_info_fields(IO& io, C& c) {
 }
 
 // XTFPINGHEADER without MagicNumber (0), HeaderType (2), NumChansToFollow (4) and
-// NumBytesThisRecord (10), which the codec derives (formats.md 1.4, 1.5).
+// NumBytesThisRecord (10), which the codec derives (docs/formats.md 1.4, 1.5).
 template <class IO, class H>
 void ping_header_fields(IO& io, H& h) {
   io.field(3, h.sub_channel_number);
@@ -237,7 +237,7 @@ void ping_header_fields(IO& io, H& h) {
   io.field(250, h.reserved_space2);
 }
 
-// XTFPINGCHANHEADER without NumSamples (42), which follows from the samples (formats.md 1.6).
+// XTFPINGCHANHEADER without NumSamples (42), which follows from the samples (docs/formats.md 1.6).
 template <class IO, class C>
 void ping_chan_fields(IO& io, C& c) {
   io.field(0, c.channel_number);

@@ -1,12 +1,12 @@
 #pragma once
 // Pure XTF encode/decode: plain structs (xtf_types.h) <-> bytes. No files, no sockets.
 //
-// Wire rules (formats.md 1.1): little-endian, packed, every field written one by one (no memcpy
-// of structs, so host endianness and alignment do not matter). A file is the XTFFILEHEADER
+// Wire rules (docs/formats.md 1.1): little-endian, packed, every field written one by one (no
+// memcpy of structs, so host endianness and alignment do not matter). A file is the XTFFILEHEADER
 // (1024 bytes for <= 6 channels) followed by packets; each packet starts with the magic 0xFACE
 // (bytes CE FA) and its own total length NumBytesThisRecord.
 //
-// A sonar packet as encoded here (formats.md 1.7), e.g. 2 channels x 1024 uint16 samples:
+// A sonar packet as encoded here (docs/formats.md 1.7), e.g. 2 channels x 1024 uint16 samples:
 //   [0, 256)      XTFPINGHEADER: CE FA | 00 (HeaderType sonar) | SubChannel | 02 00 (channels)
 //                 | Reserved1 | 80 11 00 00 (NumBytesThisRecord 4480) | Year ... (1.5)
 //   [256, 320)    XTFPINGCHANHEADER of ChannelNumber 0 (port) ... NumSamples 1024 at +42
@@ -61,7 +61,7 @@ XtfFileHeader decode_file_header(std::span<const std::uint8_t> bytes);
 
 // ---- any packet ----
 
-// The 14-byte packet start (formats.md 1.4) of a packet or datagram.
+// The 14-byte packet start (docs/formats.md 1.4) of a packet or datagram.
 struct PacketInfo {
   bool magic_ok = false;  // bytes 0-1 are CE FA
   std::uint8_t header_type = 0;
@@ -74,7 +74,7 @@ struct PacketInfo {
 // Reads the packet start without validating; nullopt if fewer than 14 bytes are given.
 std::optional<PacketInfo> peek_packet(std::span<const std::uint8_t> bytes);
 
-// What a received datagram holds (formats.md 1.11: one XTF packet or the file header per
+// What a received datagram holds (docs/formats.md 1.11: one XTF packet or the file header per
 // datagram).
 enum class DatagramKind {
   kFileHeader,  // byte 0 is 0x7B and the size equals the header size it declares (1024)

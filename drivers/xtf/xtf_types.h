@@ -2,14 +2,14 @@
 // Plain data for XTF (eXtended Triton Format, Triton Imaging spec X41/X42): the file header with
 // its channel descriptions, and sonar ping packets (ping header + one block per channel).
 //
-// Byte layouts: /work/shared/docs/formats.md §1 (XTFFILEHEADER 1.2, CHANINFO 1.3, XTFPINGHEADER
+// Byte layouts: docs/formats.md §1 (XTFFILEHEADER 1.2, CHANINFO 1.3, XTFPINGHEADER
 // 1.5, XTFPINGCHANHEADER 1.6). The structs below mirror those tables field by field. Values are
 // kept in the units the file stores (the field name says which: _kn knots, _dm decimetres, _deg
 // degrees, _ms milliseconds ...), so that decode -> encode reproduces a file byte for byte.
 // Reserved fields are kept for the same reason; writers should leave them zero.
 //
-// Sample order (formats.md 1.7): an XtfPingChannel holds its samples exactly in FILE order. For a
-// port sidescan channel (ChanInfo TypeOfChannel = kChannelPort) the file stores the FAR range
+// Sample order (docs/formats.md 1.7): an XtfPingChannel holds its samples exactly in FILE order.
+// For a port sidescan channel (ChanInfo TypeOfChannel = kChannelPort) the file stores the FAR range
 // first and nadir last; starboard and sub-bottom store nadir first. Use
 // store_samples_near_to_far() / samples_near_to_far() to hand or get samples nearest-first
 // whatever the side.
@@ -27,7 +27,7 @@
 
 namespace sonarloop::xtf {
 
-// ---- sizes and magic numbers (formats.md 1.1-1.6) ----
+// ---- sizes and magic numbers (docs/formats.md 1.1-1.6) ----
 inline constexpr std::size_t kFileHeaderSize = 1024;       // XTFFILEHEADER with 6 CHANINFO
 inline constexpr std::size_t kChanInfoOffset = 256;        // ChanInfo[0] in the file header
 inline constexpr std::size_t kChanInfoSize = 128;          // one CHANINFO
@@ -67,7 +67,7 @@ inline constexpr std::uint8_t kSampleFormatInt8 = 8;
 inline constexpr std::uint16_t kNavUnitsMetres = 0;   // X/Y are easting/northing (m)
 inline constexpr std::uint16_t kNavUnitsLatLong = 3;  // X/Y are longitude/latitude (deg)
 
-// CHANINFO: one channel's static description (128 bytes, formats.md 1.3).
+// CHANINFO: one channel's static description (128 bytes, docs/formats.md 1.3).
 struct XtfChanInfo {
   std::uint8_t type_of_channel = kChannelPort;     // kChannelPort, kChannelStbd, ...
   std::uint8_t sub_channel_number = 0;             // index of this CHANINFO
@@ -94,14 +94,14 @@ struct XtfChanInfo {
   bool operator==(const XtfChanInfo&) const = default;
 };
 
-// XTFFILEHEADER (1024 bytes; more when the file has > 6 channels, formats.md 1.2).
+// XTFFILEHEADER (1024 bytes; more when the file has > 6 channels, docs/formats.md 1.2).
 struct XtfFileHeader {
   std::uint8_t file_format = kFileFormat;
   std::uint8_t system_type = kSystemType;
   std::string recording_program_name;     // at most 8 characters
   std::string recording_program_version;  // at most 8 characters
   std::string sonar_name;                 // at most 16 characters
-  std::uint16_t sonar_type = 0;           // 0 = none (see formats.md 1.2 about types that
+  std::uint16_t sonar_type = 0;           // 0 = none (see docs/formats.md 1.2 about types that
                                           // make readers apply Weight)
   std::string note_string;                // at most 64 characters
   std::string this_file_name;             // at most 64 characters
@@ -137,7 +137,7 @@ struct XtfFileHeader {
   bool operator==(const XtfFileHeader&) const = default;
 };
 
-// XTFPINGHEADER (256 bytes, formats.md 1.5) without the derived fields of the packet start
+// XTFPINGHEADER (256 bytes, docs/formats.md 1.5) without the derived fields of the packet start
 // (MagicNumber, HeaderType = 0, NumChansToFollow and NumBytesThisRecord come from the encoder).
 struct XtfPingHeader {
   std::uint8_t sub_channel_number = 0;
@@ -221,7 +221,7 @@ struct XtfPingHeader {
 using XtfSamples = std::variant<std::vector<std::uint8_t>, std::vector<std::uint16_t>,
                                 std::vector<std::uint32_t>, std::vector<float>>;
 
-// XTFPINGCHANHEADER (64 bytes, formats.md 1.6) plus the samples that follow it.
+// XTFPINGCHANHEADER (64 bytes, docs/formats.md 1.6) plus the samples that follow it.
 struct XtfPingChannel {
   std::uint16_t channel_number = 0;     // index into XtfFileHeader::chan_info
   std::uint16_t downsample_method = 0;  // 2 MAX, 4 RMS
@@ -231,7 +231,7 @@ struct XtfPingChannel {
   float time_duration_s = 0.0f;  // time recorded (typically slant range / 750)
   float seconds_per_ping_s = 0.0f;
   std::uint16_t processing_flags = 0;  // 4 TVG, 8 BAC&GAC, 16 filter
-  std::uint16_t frequency_khz = 0;     // WORD; kHz in practice (formats.md 1.9)
+  std::uint16_t frequency_khz = 0;     // WORD; kHz in practice (docs/formats.md 1.9)
   std::uint16_t initial_gain_code = 0;
   std::uint16_t gain_code = 0;
   std::uint16_t band_width = 0;
@@ -285,7 +285,7 @@ std::optional<std::int64_t> time_utc_ns(const XtfPingHeader& header);
 // std::invalid_argument for times before year 0 or after 9999.
 void set_time_utc_ns(XtfPingHeader& header, std::int64_t t_ns);
 
-// True when this channel's samples are stored far range first: port sidescan (formats.md 1.7).
+// True when this channel's samples are stored far range first: port sidescan (docs/formats.md 1.7).
 inline bool stored_far_to_near(const XtfChanInfo& info) {
   return info.type_of_channel == kChannelPort;
 }

@@ -33,7 +33,7 @@ FrancoisGarrisonTerms francois_garrison_terms(double freq_hz, double temperature
   const double c = sound_speed_fg_m_s(t, s, d);
   const double theta_k = kCelsiusToKelvin + t;
 
-  // boric acid (F&G 1982b, physics.md §1): A1 in dB km^-1 kHz^-1, P1 = 1, f1 in kHz
+  // boric acid (F&G 1982b, docs/physics.md §1): A1 in dB km^-1 kHz^-1, P1 = 1, f1 in kHz
   const double a1 = 8.86 / c * std::pow(10.0, 0.78 * ph - 5.0);
   const double f1 =
       2.8 * std::sqrt(s / kReferenceSalinityPpt) * std::pow(10.0, 4.0 - 1245.0 / theta_k);

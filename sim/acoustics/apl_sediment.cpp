@@ -55,7 +55,7 @@ double spectral_strength_cm4(double mz) {
   return 0.00207 * h_cm * h_cm * kAplReliefReferenceLength_cm * kAplReliefReferenceLength_cm;
 }
 
-// TR 9407 Table 2 constant rows (physics.md §2.2).
+// TR 9407 Table 2 constant rows (docs/physics.md §2.2).
 struct ConstantRow {
   std::string_view key;
   AplSediment params;
@@ -63,7 +63,7 @@ struct ConstantRow {
 constexpr ConstantRow kConstantRows[] = {
     {"rough_rock", {2.5, 2.5, 0.01374, 0.002, 3.25, 0.20693}},
     {"rock", {2.5, 2.5, 0.01374, 0.002, 3.25, 0.01862}},
-    // cobble w2: CASS port value 0.016; the scan of Table 2 is ambiguous (physics.md §2.2)
+    // cobble w2: CASS port value 0.016; the scan of Table 2 is ambiguous (docs/physics.md §2.2)
     {"cobble", {2.5, 1.8, 0.01374, 0.002, 3.25, 0.016}},
 };
 

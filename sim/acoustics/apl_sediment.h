@@ -4,7 +4,7 @@
 // Source: APL-UW, "High-Frequency Ocean Environmental Acoustic Models Handbook", TR 9407 /
 // AEAS 9501 (1994), Section IV: Table 1 (the six inputs), Table 2 (sediment classes), Eqs. 2-10
 // (inputs from mean grain size), Eqs. 29-33 (lossy Rayleigh reflection). Transcribed in
-// physics.md §2.1-§2.3.
+// docs/physics.md §2.1-§2.3.
 #include <complex>
 
 #include "sim/seabed/sediment.h"
@@ -36,7 +36,7 @@ inline constexpr double kAplMaxGrainSizePhi = 9.0;
 AplSediment apl_from_grain_size(double mz_phi, double c1_m_s = kAplTableSoundSpeed_m_s);
 
 // TR 9407 Table 2 row for a sediment of sim/seabed/sediment.h. Rock, rough rock and cobble are
-// the table's constants (physics.md §2.2; cobble w2 = 0.016 cm⁴ as the CASS port, ±0.003
+// the table's constants (docs/physics.md §2.2; cobble w2 = 0.016 cm⁴ as the CASS port, ±0.003
 // uncertain); every other row is its Mz through apl_from_grain_size (c1 = 1528 m/s).
 // Throws std::invalid_argument for an id outside seabed::sediment_table().
 AplSediment apl_sediment(seabed::SedimentId id);

@@ -1,8 +1,9 @@
 #pragma once
-// Beam pattern and directivity of a continuous, uniformly weighted line array (physics.md §0, §4).
+// Beam pattern and directivity of a continuous, uniformly weighted line array
+// (docs/physics.md §0, §4).
 //
 // Source: Urick, "Principles of Underwater Sound", 3rd ed. (1983) §3.6 and Table 3.1; Pailhas,
-// Petillot & Capus (2010) use the same pattern (physics.md §0):
+// Petillot & Capus (2010) use the same pattern (docs/physics.md §0):
 //   B(θ) = sin(x)/x ,   x = (π·l/λ)·sin θ        one-way PRESSURE pattern, θ off broadside
 // The two-way (transmit + receive with the same aperture) pressure pattern is B², i.e.
 // 2 × 20·log10|B| in dB; intensity patterns are the squares of the pressure patterns.

@@ -63,7 +63,7 @@ KirchhoffConstants kirchhoff_constants(double gamma) {
       std::pow(8.0 * al * al * std::tgamma(1.0 / (2.0 * al) + 0.5) /
                    (std::tgamma(0.5) * std::tgamma(1.0 / al) * std::tgamma(1.0 / (2.0 * al))),
                2.0 * al);
-  // plus exponent: makes σ_kr at 90° equal the exact Kirchhoff integral (physics.md §2.4 ★)
+  // plus exponent: makes σ_kr at 90° equal the exact Kirchhoff integral (docs/physics.md §2.4 ★)
   const double b = std::pow(a, 0.5 + 1.0 / (2.0 * al)) * std::tgamma(1.0 / al) / (2.0 * al);
   return {a, b};
 }

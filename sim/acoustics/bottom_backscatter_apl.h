@@ -1,6 +1,6 @@
 #pragma once
 // APL-UW TR 9407 (1994) bottom backscattering strength, Section IV.C, Eqs. 34-66
-// (physics.md §2.4). Monostatic, 10-100 kHz fit band; values above 100 kHz extrapolate.
+// (docs/physics.md §2.4). Monostatic, 10-100 kHz fit band; values above 100 kHz extrapolate.
 //
 //   S_b(θ) = 10·log10( σ_r(θ) + σ_v(θ) )                                        Eq. 34
 //   σ_r: interface roughness — Kirchhoff near vertical (Eqs. 35-40), composite roughness with
@@ -13,7 +13,7 @@
 // relief spectrum W(K) = w2/(h0·K)^γ has h0 = 1 cm and w2 in cm⁴.
 // Deviation from the printed report: the Kirchhoff constant b uses exponent +(1/2 + 1/(2α)),
 // not the printed (1/2 − 1/(2α)); the plus form equals the exact Kirchhoff integral at normal
-// incidence and reproduces Table 3 (physics.md §2.4 ★).
+// incidence and reproduces Table 3 (docs/physics.md §2.4 ★).
 // Validity (TR 9407 IV.A.8): 10-100 kHz, 0-90° grazing, c1 1400-1600 m/s, 2 < γ < 4. Stated
 // model uncertainty: ~3 dB for sand/silt above 5°, ~10 dB for rock and gravel above 15°.
 #include "sim/acoustics/apl_sediment.h"

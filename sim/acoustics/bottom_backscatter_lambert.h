@@ -1,5 +1,6 @@
 #pragma once
-// Lambert's law for bottom backscatter, the simple fallback to the APL-UW model (physics.md §2.6).
+// Lambert's law for bottom backscatter, the simple fallback to the APL-UW model
+// (docs/physics.md §2.6).
 //
 // Source: Mackenzie, "Bottom reverberation for 530- and 1030-cps sound in deep water",
 // JASA 33(11) 1498-1504 (1961); Urick (1983) §8.12. Bistatic σ = μ·sinθ_i·sinθ_s, monostatic

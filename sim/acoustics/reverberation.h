@@ -1,12 +1,12 @@
 #pragma once
-// Boundary (seabed) reverberation level of the Pailhas sonar equation (physics.md §0, §2.6).
+// Boundary (seabed) reverberation level of the Pailhas sonar equation (docs/physics.md §0, §2.6).
 //
 //   RL = SL − 2·TL + S_s(θ) + 10·log10 A ,   A = (c·τ/2)·φ·r
-// Source: Pailhas, Petillot & Capus (2010) as given in physics.md §0; Urick (1983) ch. 8 (boundary
-// reverberation). A is the insonified seabed area of one resolution cell with r the SLANT range:
-// the ground extent cτ/(2cosθ) times the arc φ·r·cosθ, the cosines cancel, so it holds at any
-// grazing angle (physics.md §0 notes). Validity: pulse short against range (cτ/2 << r), beam narrow
-// (φ << 1 rad), flat bottom across the cell.
+// Source: Pailhas, Petillot & Capus (2010) as given in docs/physics.md §0; Urick (1983) ch. 8
+// (boundary reverberation). A is the insonified seabed area of one resolution cell with r the SLANT
+// range: the ground extent cτ/(2cosθ) times the arc φ·r·cosθ, the cosines cancel, so it holds at
+// any grazing angle (docs/physics.md §0 notes). Validity: pulse short against range (cτ/2 << r),
+// beam narrow (φ << 1 rad), flat bottom across the cell.
 namespace sonarloop::acoustics {
 
 // Insonified area of one cell, m²: (c·τ/2)·φ·r. range_m is slant range, pulse_length_s the CW

@@ -1,5 +1,5 @@
 #pragma once
-// Sidescan sonar geometry and resolution (physics.md §3, standard; e.g. Blondel, "The Handbook
+// Sidescan sonar geometry and resolution (docs/physics.md §3, standard; e.g. Blondel, "The Handbook
 // of Sidescan Sonar", Springer 2009, ch. 2). Flat seabed, straight rays, altitude h above it.
 namespace sonarloop::acoustics {
 
@@ -31,7 +31,7 @@ double far_field_range_m(double length_m, double wavelength_m);
 double min_ping_interval_s(double max_range_m, double sound_speed_m_s);
 
 // Fastest tow speed giving pings_on_target pings on a target of along-track length ℓ at slant
-// range R, with one ping per 2R/c: v = ℓ·c/(2·R·N) (NOAA/IHO rule; physics.md §3).
+// range R, with one ping per 2R/c: v = ℓ·c/(2·R·N) (NOAA/IHO rule; docs/physics.md §3).
 double max_tow_speed_m_s(double target_length_m, double sound_speed_m_s, double max_range_m,
                          double pings_on_target);
 

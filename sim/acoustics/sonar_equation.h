@@ -1,5 +1,6 @@
 #pragma once
-// The energetic (active) sonar equation of Pailhas, Petillot & Capus (2010), physics.md §0, §3.
+// The energetic (active) sonar equation of Pailhas, Petillot & Capus (2010),
+// docs/physics.md §0, §3.
 //
 //   EL = SL − 2·TL + TS + B2                 echo level of a target (TS) or seabed cell
 //                                            (TS → S_b(θ) + 10·log10 A), B2 = two-way beam

@@ -1,5 +1,5 @@
 #pragma once
-// Speckle: the fluctuation of the echo intensity of a cell about its mean (physics.md §3).
+// Speckle: the fluctuation of the echo intensity of a cell about its mean (docs/physics.md §3).
 //
 // Fully developed speckle (many random scatterers per cell): the complex field is circular
 // Gaussian, so the amplitude is Rayleigh and the intensity exponential with the cell's mean
@@ -9,7 +9,7 @@
 // Gamma(ν)-distributed local mean times exponential speckle (Jakeman & Pusey, IEEE Trans.
 // Antennas Propag. 24(6) 806-814, 1976; Abraham & Lyons 2002), scintillation index 1 + 2/ν.
 //
-// Noise is an argument (style.md habit 12): the exponential form takes the uniform variate u,
+// Noise is an argument (docs/style.md habit 12): the exponential form takes the uniform variate u,
 // so a caller can draw u from any deterministic stream; the K form takes an Rng.
 #include <span>
 

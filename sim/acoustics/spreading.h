@@ -1,5 +1,5 @@
 #pragma once
-// Transmission loss: spherical spreading plus absorption (physics.md §0; Urick, "Principles of
+// Transmission loss: spherical spreading plus absorption (docs/physics.md §0; Urick, "Principles of
 // Underwater Sound", 3rd ed. 1983, ch. 5, with α in dB/m).
 //
 //   TL(r) = 20·log10(r / 1 m) + α·r      dB re 1 m, one way
@@ -12,7 +12,7 @@ namespace sonarloop::acoustics {
 // One-way spherical transmission loss, dB. range_m > 0 (slant range), alpha_db_per_m >= 0.
 double transmission_loss_db(double range_m, double alpha_db_per_m);
 
-// Two-way (out and back) loss 2·TL, dB, as used in the sonar equation (physics.md §0).
+// Two-way (out and back) loss 2·TL, dB, as used in the sonar equation (docs/physics.md §0).
 double two_way_transmission_loss_db(double range_m, double alpha_db_per_m);
 
 }  // namespace sonarloop::acoustics

@@ -1,14 +1,14 @@
 #pragma once
-// Target scattering: impedance reflectance and Lambertian facets (physics.md §0, §4).
+// Target scattering: impedance reflectance and Lambertian facets (docs/physics.md §0, §4).
 //
-// Pailhas, Petillot & Capus (2010) (physics.md §0) model targets as diffuse (Lambertian)
+// Pailhas, Petillot & Capus (2010) (docs/physics.md §0) model targets as diffuse (Lambertian)
 // scatterers:
 //   dσ = μ·cosθ_i·cosθ_s·dA,   monostatic: dσ = μ·cos²θ·dA       θ from the facet normal
 // with μ set from the material's normal-incidence reflectance R = (Z2 − Z1)/(Z2 + Z1), Z = ρ·c
 // (normal-incidence plane-wave reflection, Kinsler et al., "Fundamentals of Acoustics", 4th ed.
 // 2000, ch. 6).
 //
-// DESIGN CHOICE (physics.md §4 leaves it open): μ = R²/π. R² is the fraction of incident
+// DESIGN CHOICE (docs/physics.md §4 leaves it open): μ = R²/π. R² is the fraction of incident
 // ENERGY reflected at normal incidence, and 1/π is the largest μ a Lambertian surface can have
 // without scattering more energy than it receives (∫ cosθ_s dΩ over a hemisphere = π). So a
 // perfect reflector (|R| = 1) is the brightest allowed Lambert surface, and steel gives

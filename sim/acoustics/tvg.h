@@ -2,7 +2,7 @@
 // Time-varied gain: the receiver gain that removes the range dependence of the echo.
 //
 //   TVG(r) = n·log10 r + 2·α·r       dB, r slant range in m, α in dB/m
-// Source: physics.md §3 (textbook rule, marked [M] there: no primary source was verified). The
+// Source: docs/physics.md §3 (textbook rule, marked [M] there: no primary source was verified). The
 // exponents follow from this library's sonar equation: a point target's echo falls as r⁻⁴
 // (two-way spherical spreading, spreading.h), so n = 40; a seabed cell's echo as A/r⁴ with
 // A ∝ r (reverberation.h), so n = 30; n = 20 is the curve many commercial systems apply

@@ -1,5 +1,5 @@
 #pragma once
-// Deterministic randomness (design.md, "Rules of the house"; style.md habits 11-12).
+// Deterministic randomness (docs/design.md, "Rules of the house"; docs/style.md habits 11-12).
 //
 // Every stream of randomness is derived from (scenario seed, stream id, sub-keys) by hashing, so
 // the same scenario and seed give the same numbers on any number of threads, in any order.
@@ -13,8 +13,8 @@
 
 namespace sonarloop {
 
-// Stream ids: one per independent source of randomness. Never reuse or renumber an id (style.md
-// habit 27): goldens and recorded datasets depend on them.
+// Stream ids: one per independent source of randomness. Never reuse or renumber an id
+// (docs/style.md habit 27): goldens and recorded datasets depend on them.
 enum class RngStream : std::uint64_t {
   kElevation = 1,   // large-scale pink-noise elevation layer
   kPartition = 2,   // sediment partition border warp

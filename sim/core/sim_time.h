@@ -1,5 +1,5 @@
 #pragma once
-// Simulation time: an explicit argument everywhere in sim/ (design.md, "Rules of the house").
+// Simulation time: an explicit argument everywhere in sim/ (docs/design.md, "Rules of the house").
 // Only the emulator's pacer reads a wall clock; everything else receives a SimTime.
 #include <cstdint>
 

@@ -365,6 +365,7 @@ ChipImage ChipRenderer::render(std::uint64_t index, int resolution) const {
   const auto n = static_cast<std::size_t>(chip.rows) * static_cast<std::size_t>(chip.cols);
   chip.level_db.assign(n, 0.0f);
   chip.pixels.assign(n, 0);
+  chip.labels.assign(n, kLabelSeabed);
   chip.truth.assign(static_cast<std::size_t>(chip.rows), ChipRowTruth{});
   PingScratch scratch;
   PingLines lines;
@@ -375,6 +376,7 @@ ChipImage ChipRenderer::render(std::uint64_t index, int resolution) const {
     pose.yaw = p.track_heading_deg * kDegToRad;
     RenderOptions options;
     options.truth = true;
+    options.labels = true;
     options.side_mask = 1 << p.side;
     options.shadow_margin_m = kViewNearMargin_m;
     if (raytrace) {
@@ -396,6 +398,7 @@ ChipImage ChipRenderer::render(std::uint64_t index, int resolution) const {
     }
     renderer.render(sc, pose, seed, static_cast<std::uint64_t>(k), options, scratch, lines);
     const std::vector<float>& line = p.side == 1 ? lines.stbd : lines.port;
+    const std::vector<std::uint8_t>& label = p.side == 1 ? lines.stbd_label : lines.port_label;
     const int row = p.side == 1 ? chip.rows - 1 - k : k;
     for (int c = 0; c < chip.cols; ++c) {
       const int bin = k0 + c;
@@ -406,6 +409,7 @@ ChipImage ChipRenderer::render(std::uint64_t index, int resolution) const {
                             static_cast<std::size_t>(c);
       chip.level_db[m] = static_cast<float>(level);
       chip.pixels[m] = chip_pixel(level, spec_.levels);
+      chip.labels[m] = label[static_cast<std::size_t>(bin)];
     }
     ChipRowTruth& t = chip.truth[static_cast<std::size_t>(row)];
     for (const TargetTrace& tr : scratch.traces) {

@@ -178,6 +178,9 @@ struct ChipImage {
   double target_col = 0.0;
   std::vector<float> level_db;       // (rows x cols) dB re full scale (-300 where no echo)
   std::vector<std::uint8_t> pixels;  // (rows x cols) the 8-bit chip
+  // (rows x cols) per pixel kLabelSeabed, kLabelHighlight or kLabelShadow (values 0/1/2: the
+  // ping renderer's per-bin labels, bin_labels.h), aligned with pixels
+  std::vector<std::uint8_t> labels;
   // From the renderer's truth rays, per row: the columns where the target echoes and where
   // the seabed it hides lies (chip coordinates; they may reach beyond [0, cols)), and the
   // target's echo energy in that ping (linear, before speckle).

@@ -8,12 +8,13 @@
 #include "sim/acoustics/noise.h"
 #include "sim/acoustics/target_scattering.h"
 #include "sim/core/rng.h"
+#include "sim/render/bin_labels.h"
 #include "sim/seabed/sediment.h"
 
 namespace sonarloop::render {
 namespace {
 
-constexpr double kWaterDensity_kg_m3 = 1027.0;  // physics.md §4 impedance table (Z1)
+constexpr double kWaterDensity_kg_m3 = 1027.0;  // docs/physics.md §4 impedance table (Z1)
 // Grid of the tabulated vertical pattern: points per unit of sin(off axis), at least
 // kPatternPointsPerLobe per main-lobe half width (sin = λ/height).
 constexpr int kPatternMinPoints = 16384;
@@ -177,10 +178,11 @@ EchoModel::TubeEcho EchoModel::target_tube(const RayMeta& m, double r, double co
   return {spread * mu * cos_i, tube_width_bins(m, r, cos_i, sonar_.desc.bin_size_m)};
 }
 
-void EchoModel::start_lines(PingScratch& scratch) const {
+void EchoModel::start_lines(const RenderOptions& options, PingScratch& scratch) const {
   const auto nb = static_cast<std::size_t>(sonar_.bins);
   scratch.accum[0].assign(nb, 0.0);
   scratch.accum[1].assign(nb, 0.0);
+  start_bin_labels(options, sonar_.bins, scratch.labels);
 }
 
 void EchoModel::finish_lines(const RenderOptions& options, std::uint64_t seed,
@@ -192,13 +194,15 @@ void EchoModel::finish_lines(const RenderOptions& options, std::uint64_t seed,
   out.port.assign(nb, 0.0f);
   out.stbd.assign(nb, 0.0f);
   out.altitude_m = altitude;
-  if (!(altitude > 0.0)) return;  // out of the water: silent lines
   const double r_max = std::min(options.range_max_m, sonar_.desc.max_range_m);
   const int k0 = std::clamp(static_cast<int>(std::floor(options.range_min_m / dr)), 0, bins);
   const int k1 = std::clamp(static_cast<int>(std::ceil(r_max / dr)), 0, bins);
+  const int blur = std::max(1, static_cast<int>(std::lround(sonar_.range_resolution_m / dr)));
+  // the labels read the echoes before noise, blur and speckle change them
+  finish_bin_labels(options, bins, k0, k1, blur, scratch.accum, scratch.labels, out);
+  if (!(altitude > 0.0)) return;  // out of the water: silent lines
   const bool speckle = options.speckle && sonar_.desc.speckle;
   const bool noise = options.noise && sonar_.desc.noise;
-  const int blur = std::max(1, static_cast<int>(std::lround(sonar_.range_resolution_m / dr)));
   // only the window's bins are finished (a chip renders a few metres of a long range): the
   // blur of its first bin reads blur - 1 bins before it
   const int first_read = std::max(0, k0 - blur + 1);

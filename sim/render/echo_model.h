@@ -5,7 +5,7 @@
 // noise, pulse blur, speckle). A renderer only finds what the ping sees and where; everything it
 // adds to a line goes through here, so the two renderers differ in geometry only.
 //
-// The energetic sonar equation (Pailhas et al. 2010, Sec. 2.3; physics.md §0, §3), linear:
+// The energetic sonar equation (Pailhas et al. 2010, Sec. 2.3; docs/physics.md §0, §3), linear:
 //
 //   I = SL · G_v(δ) · G_h · σ(θ) · dA / r⁴ · e^(−2αr)
 //
@@ -100,11 +100,12 @@ class EchoModel {
     return source_level_lin_ * m.pattern * d_omega * std::exp(-alpha_np_ * r) / (r * r);
   }
 
-  // The end of every ping: allocates and zeroes the accumulators (start_lines), then, over the
-  // rendered window only (RenderOptions' range window; the lines are zero outside it), adds
-  // thermal noise, blurs to the pulse's range resolution and applies speckle drawn from
-  // (seed, ping_index, side) from the window's first bin on, writing the lines (finish_lines).
-  void start_lines(PingScratch& scratch) const;
+  // The end of every ping: allocates and zeroes the accumulators (start_lines; the labels' too
+  // when options.labels, bin_labels.h), then, over the rendered window only (RenderOptions' range
+  // window; the lines are zero outside it), labels the bins if asked, adds thermal noise, blurs
+  // to the pulse's range resolution and applies speckle drawn from (seed, ping_index, side) from
+  // the window's first bin on, writing the lines (finish_lines).
+  void start_lines(const RenderOptions& options, PingScratch& scratch) const;
   void finish_lines(const RenderOptions& options, std::uint64_t seed, std::uint64_t ping_index,
                     double altitude, PingScratch& scratch, PingLines& out) const;
 

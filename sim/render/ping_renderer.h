@@ -44,11 +44,19 @@ const char* renderer_name(RendererKind kind);  // "profile", "raytrace"
 // Parses "profile" or "raytrace"; nullopt otherwise.
 std::optional<RendererKind> parse_renderer(const std::string& name);
 
+// Per-bin labels (RenderOptions::labels; the rule is in bin_labels.h): values, not grey levels.
+inline constexpr std::uint8_t kLabelSeabed = 0;     // seabed echo, water column, or nothing
+inline constexpr std::uint8_t kLabelHighlight = 1;  // target echoes dominate the bin
+inline constexpr std::uint8_t kLabelShadow = 2;     // most of the bin's seabed hidden by a target
+
 // One ping: intensity per slant-range bin, bin k covering [k, k+1)·bin_size_m.
 struct PingLines {
   std::vector<float> port;  // (bins) linear intensity re 1 µPa² at the receiver
   std::vector<float> stbd;
   double altitude_m = std::numeric_limits<double>::quiet_NaN();  // measured at nadir
+  // (bins) kLabel* per bin when RenderOptions::labels is set; empty otherwise
+  std::vector<std::uint8_t> port_label;
+  std::vector<std::uint8_t> stbd_label;
 };
 
 // What a ping saw of each target (for truth files and tests).
@@ -64,6 +72,7 @@ struct TargetTrace {
 
 struct RenderOptions {
   bool truth = false;        // fill PingScratch::traces
+  bool labels = false;       // fill PingLines::port_label / stbd_label (bin_labels.h)
   bool speckle = true;       // AND-ed with SonarDesc::speckle
   bool noise = true;         // AND-ed with SonarDesc::noise
   double range_min_m = 0.0;  // only bins overlapping [range_min_m, range_max_m] are rendered
@@ -101,6 +110,14 @@ struct ProfileLineScratch {
   std::vector<float> horizon;   // running minimum tan(depression) after each march sample
 };
 
+// What the per-bin labels are made of (bin_labels.h), per side, per bin; sized only when
+// RenderOptions::labels is set.
+struct BinLabelScratch {
+  std::vector<double> target_energy[2];       // the share of PingScratch::accum from target echoes
+  std::vector<std::uint32_t> seabed_seen[2];  // seabed samples (rays) the ping sees
+  std::vector<std::uint32_t> seabed_hidden[2];  // seabed samples a target hides from it
+};
+
 // Buffers of one rendering thread, sized on first use (no allocation per ping afterwards).
 struct PingScratch {
   std::vector<double> accum[2];
@@ -108,6 +125,7 @@ struct PingScratch {
   std::vector<RTCRayHit> rays;  // the ping's rays (view-local coordinates), then their hits
   std::vector<RayMeta> meta;
   std::vector<TargetTrace> traces;
+  BinLabelScratch labels;
   ProfileLineScratch line;
   seabed::HeightSampler heights;  // profile: heightmap tiles of the scene being rendered
   std::uint64_t rays_cast = 0;    // rays intersected in the last ping (incl. truth rays)

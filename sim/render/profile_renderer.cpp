@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "sim/render/bin_labels.h"
 #include "sim/render/echo_model.h"
 #include "sim/render/profile_line.h"
 
@@ -70,7 +71,7 @@ void ProfileRenderer::render(const scene::Scene& scene, const Pose& pose, std::u
   scratch.traces.clear();
   scratch.rays_cast = 0;
   scratch.samples = 0;
-  echo().start_lines(scratch);
+  echo().start_lines(options, scratch);
   const seabed::SeabedModel& sb = scene.seabed();
   const MarchPlan plan = march_plan(fidelity_, sb.spacing_m(), sonar_.desc.bin_size_m);
   scratch.heights.bind(sb, plan.level);
@@ -188,6 +189,8 @@ void ProfileRenderer::march(const scene::Scene& scene, const Line& line,
       0, bins);  // one past the last
   const auto in_window = [&](int bin) { return bin >= bin_lo && bin < bin_hi; };
   const bool targets = !ls.hit_r.empty();
+  const bool labels = options.labels;
+  const auto bin_of = [inv_dr](double r) { return static_cast<int>(r * inv_dr); };
   const std::size_t n_rays = ls.hit_r.size();
   if (targets) ls.horizon.resize(static_cast<std::size_t>(line.samples));
 
@@ -367,6 +370,8 @@ void ProfileRenderer::march(const scene::Scene& scene, const Line& line,
       }
       // on or above the horizon: β/s ≤ β_m/s_m
       const bool lit1 = b * hs_m <= hb_m * s;
+      // labels: seabed the ping sees, or would see but for a target (bin_labels.h)
+      if (labels && lit1) count_seabed_sample(scratch.labels, line.side, bin_of(r), hidden1);
 
       if (k > 0) {
         // the lit part of the segment P0 P1: at or above the horizon ray β = m·s, m = β_m/s_m,
@@ -485,6 +490,8 @@ void ProfileRenderer::march(const scene::Scene& scene, const Line& line,
     const EchoModel::TubeEcho e =
         em.target_tube(scratch.meta[i], r, std::fabs(d.dot(nrm)), em.target_mu(scene, target));
     splat(scratch.accum[line.side], r * inv_dr, e.width_bins, e.intensity);
+    if (labels)
+      splat(scratch.labels.target_energy[line.side], r * inv_dr, e.width_bins, e.intensity);
     if (options.truth) {
       TargetTrace& tr = trace_of(scratch.traces, target, line.side);
       extend_bins(tr.highlight_first, tr.highlight_last, bin);

@@ -10,7 +10,7 @@
 //
 // The full-scale level L_fs is the TVG-corrected echo of a seabed patch with backscattering
 // strength kFullScaleStrengthDb seen broadside at normal incidence: rough rock (about -5 dB
-// at steep grazing, physics.md §2.5) just reaches full scale, sand sits 20-30 dB below, and
+// at steep grazing, docs/physics.md §2.5) just reaches full scale, sand sits 20-30 dB below, and
 // strong target highlights clip, as on a real recorder with a fixed gain.
 #include <cstdint>
 #include <span>

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <thread>
 
+#include "sim/render/bin_labels.h"
 #include "sim/render/echo_model.h"
 #include "sim/render/ray_fan.h"
 #include "sim/scene/embree_device.h"
@@ -30,6 +31,34 @@ Hit trace(RTCScene scene, const Vec3& o_local, const Vec3& d, double tnear, doub
   h.r = rh.ray.tfar;
   h.geom = rh.hit.geomID;
   return h;
+}
+
+// A target's base on the seabed: its last surface lies this close to the seabed (labels).
+constexpr double kBaseOnSeabed_m = 0.02;
+
+// What a ray that hit a target at range r meets when continued through the target's surfaces up
+// to r_max: the seabed it hides (negative: none), and the last target surface it passed.
+struct Behind {
+  double seabed_r = -1.0;
+  double exit_r = -1.0;
+};
+
+Behind seabed_behind(RTCScene scene, const Vec3& o_local, const Vec3& d, double r, double r_max,
+                     std::size_t n_grids, std::uint64_t& rays_cast) {
+  Behind b;
+  double t = r;
+  for (int c = 0; c < kMaxContinuations; ++c) {
+    const Hit behind = trace(scene, o_local, d, t + 1e-4, r_max);
+    ++rays_cast;
+    if (!behind.hit) break;
+    t = behind.r;
+    if (behind.geom < n_grids) {
+      b.seabed_r = t;
+      return b;
+    }
+    b.exit_r = t;
+  }
+  return b;
 }
 
 bool same_box(const scene::Box2& a, const scene::Box2& b) {
@@ -199,7 +228,7 @@ void RaytraceRenderer::shade(const scene::Scene& scene, const scene::SceneView& 
                              std::uint64_t seed, std::uint64_t ping_index,
                              const RenderOptions& options, double altitude, PingScratch& scratch,
                              PingLines& out) const {
-  echo().start_lines(scratch);
+  echo().start_lines(options, scratch);
   if (!(altitude > 0.0)) {
     echo().finish_lines(options, seed, ping_index, altitude, scratch, out);
     return;
@@ -226,24 +255,37 @@ void RaytraceRenderer::shade(const scene::Scene& scene, const scene::SceneView& 
       const Vec3 o(rh.ray.org_x, rh.ray.org_y, rh.ray.org_z);
       view.describe_hit(rh.hit.geomID, view.local_origin_W() + o + r * d, info);
       e = echo().seabed_tube(m, r, cos_i, info.sediment);
+      if (options.labels) count_seabed_sample(scratch.labels, m.side, bin, false);
     } else {
       view.describe_hit(rh.hit.geomID, Vec3::Zero(), info);
       e = echo().target_tube(m, r, cos_i, echo().target_mu(scene, info.target));
-      if (options.truth) {
-        TargetTrace& tr = trace_of(scratch.traces, info.target, m.side);
-        extend_bins(tr.highlight_first, tr.highlight_last, bin);
-        tr.energy += e.intensity;
+      if (options.labels)
+        splat(scratch.labels.target_energy[m.side], r / dr, e.width_bins, e.intensity);
+      if (options.truth || options.labels) {
         // continue the ray through the target to the seabed it hides
         const Vec3 o(rh.ray.org_x, rh.ray.org_y, rh.ray.org_z);
-        double t = r;
-        for (int c = 0; c < kMaxContinuations; ++c) {
-          const Hit behind = trace(view.rtc_scene(), o, d, t + 1e-4, r_max);
-          ++scratch.rays_cast;
-          if (!behind.hit) break;
-          t = behind.r;
-          if (behind.geom < n_grids) {
-            extend_bins(tr.shadow_first, tr.shadow_last, static_cast<int>(t / dr));
-            break;
+        const Behind behind =
+            seabed_behind(view.rtc_scene(), o, d, r, r_max, n_grids, scratch.rays_cast);
+        if (options.truth) {
+          TargetTrace& tr = trace_of(scratch.traces, info.target, m.side);
+          extend_bins(tr.highlight_first, tr.highlight_last, bin);
+          tr.energy += e.intensity;
+          if (behind.seabed_r >= 0.0) {
+            extend_bins(tr.shadow_first, tr.shadow_last, static_cast<int>(behind.seabed_r / dr));
+          }
+        }
+        if (options.labels) {
+          // the seabed under a target's base: the continuation steps past it where the base
+          // lies on it (the same surface twice), so the base's own range stands for it
+          double hidden_r = behind.seabed_r;
+          if (hidden_r < 0.0 && behind.exit_r >= 0.0) {
+            const Vec3 p = view.local_origin_W() + o + behind.exit_r * d;
+            if (std::abs(scene.seabed_z(p.x(), p.y()) - p.z()) <= kBaseOnSeabed_m) {
+              hidden_r = behind.exit_r;
+            }
+          }
+          if (hidden_r >= 0.0) {
+            count_seabed_sample(scratch.labels, m.side, static_cast<int>(hidden_r / dr), true);
           }
         }
       }

@@ -1,5 +1,5 @@
 #pragma once
-// The scenario as plain data (style.md habit 1): what a YAML scenario file says, after
+// The scenario as plain data (docs/style.md habit 1): what a YAML scenario file says, after
 // validation, with every default filled in. config/reference.yaml documents each field.
 // Nothing here allocates Embree objects or generates terrain; see scene.h for that.
 #include <cstdint>
@@ -19,7 +19,7 @@ struct GeoOrigin {
   double longitude_deg = -3.2;
 };
 
-// Water column properties (Francois–Garrison inputs, physics.md §1).
+// Water column properties (Francois–Garrison inputs, docs/physics.md §1).
 struct WaterDesc {
   double temperature_c = 10.0;
   double salinity_ppt = 35.0;
@@ -51,17 +51,17 @@ struct RipplesDesc {
 };
 
 // Rocky seabed with anisotropic erosion: NOT Pailhas eq. (2), which is unreadable; the labelled
-// stand-in of physics.md §5: F = ((alpha·fx')^2 + fy'^2 + f0^2)^(-beta/2), x' along direction, so
-// features are alpha times longer along the erosion direction than across it.
+// stand-in of docs/physics.md §5: F = ((alpha·fx')^2 + fy'^2 + f0^2)^(-beta/2), x' along direction,
+// so features are alpha times longer along the erosion direction than across it.
 struct RockyDesc {
   double rms_m = 0.08;
-  double beta = 3.2;           // exponent of the 2-D spectrum (as physics.md §5 writes it)
+  double beta = 3.2;           // exponent of the 2-D spectrum (as docs/physics.md §5 writes it)
   double anisotropy = 3.0;     // alpha: correlation length along x' is alpha times that along y'
   double direction_deg = 0.0;  // erosion direction x', clockwise from north
   double outer_scale_m = 3.0;  // largest feature scale
 };
 
-// Clutter: Poisson-distributed rocks with log-normal sizes (physics.md §3).
+// Clutter: Poisson-distributed rocks with log-normal sizes (docs/physics.md §3).
 struct ClutterDesc {
   double density_per_m2 = 0.05;
   double median_diameter_m = 0.25;

@@ -1,7 +1,7 @@
 #pragma once
 // Clutter layer: rocks scattered as a Poisson point process with log-normal diameters
-// (physics.md §3, "Poisson clutter"). The plane is cut into fixed cells; each cell's rocks are a
-// pure function of (seed, cell), so any tile can find the rocks that reach into it without
+// (docs/physics.md §3, "Poisson clutter"). The plane is cut into fixed cells; each cell's rocks are
+// a pure function of (seed, cell), so any tile can find the rocks that reach into it without
 // knowing about other tiles. Regions with different clutter densities are handled by thinning:
 // candidates are drawn at the largest density and each is kept with probability
 // density(region at the rock) / largest density, which is again a Poisson process.

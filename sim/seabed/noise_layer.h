@@ -1,6 +1,6 @@
 #pragma once
 // A stationary Gaussian random field with a given power spectrum, defined on an infinite
-// lattice and generated lazily in tiles (physics.md §5 spectral synthesis, made tileable).
+// lattice and generated lazily in tiles (docs/physics.md §5 spectral synthesis, made tileable).
 //
 // Method: the field is white noise on the lattice convolved with a finite kernel
 // k = IFFT(sqrt(F)) (cropped to K×K cells and tapered). Each lattice site's white value is a

@@ -6,7 +6,7 @@
 namespace sonarloop::seabed {
 namespace {
 
-// physics.md §2.2 (TR 9407 Table 2). Order is the id: append only.
+// docs/physics.md §2.2 (TR 9407 Table 2). Order is the id: append only.
 constexpr std::array<SedimentInfo, 23> kTable{{
     {"rough_rock", "Rough rock", "", std::nullopt},
     {"rock", "Rock", "", std::nullopt},

@@ -1,5 +1,5 @@
 #pragma once
-// Sediment classes of APL-UW TR 9407 (1994) Table 2, as listed in physics.md §2.2.
+// Sediment classes of APL-UW TR 9407 (1994) Table 2, as listed in docs/physics.md §2.2.
 //
 // Scenario files name sediments by `key` (snake_case) or one of its aliases. The acoustic
 // parameters (ρ, ν, δ, σ2, γ, w2) live in sim/acoustics/apl_sediment.h: rock, cobble and

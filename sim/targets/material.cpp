@@ -5,7 +5,7 @@
 namespace sonarloop::targets {
 namespace {
 
-// physics.md §4, impedance reflectance table.
+// docs/physics.md §4, impedance reflectance table.
 constexpr std::array<NamedMaterial, 5> kMaterials{{
     {"steel", 7850.0, 5900.0},
     {"aluminium", 2700.0, 6320.0},

@@ -1,6 +1,6 @@
 #pragma once
 // Target materials: density and compressional sound speed, whose product is the acoustic
-// impedance Z = ρ·c used for the target reflectance (physics.md §4, impedance table).
+// impedance Z = ρ·c used for the target reflectance (docs/physics.md §4, impedance table).
 #include <optional>
 #include <span>
 #include <string>
@@ -14,7 +14,7 @@ struct NamedMaterial {
   double sound_speed_m_s;
 };
 
-// steel, aluminium, concrete, grp, rubber (physics.md §4).
+// steel, aluminium, concrete, grp, rubber (docs/physics.md §4).
 std::span<const NamedMaterial> material_table();
 std::optional<NamedMaterial> find_material(std::string_view key);
 std::string material_keys_list();

@@ -49,7 +49,7 @@
 namespace sonarloop::targets {
 
 // Largest chord across a curved surface for the default tessellation (m): the finest pixel size
-// (3 cm) of the resolution study of Pailhas et al. (2010) (pixels of 3–30 cm, design.md).
+// (3 cm) of the resolution study of Pailhas et al. (2010) (pixels of 3–30 cm, docs/design.md).
 inline constexpr double kMaxFacetChordM = 0.03;
 // Fewest default segments around a curve: inscribed 48-gon area deficit 0.286 % (< 0.3 %).
 inline constexpr int kMinCurvedSegments = 48;

@@ -1,6 +1,6 @@
 #pragma once
 // Noise processes that are pure functions of (seed, channel, time): the same arguments give the
-// same value on any thread, in any order, with no state and no cache (design.md, randomness).
+// same value on any thread, in any order, with no state and no cache (docs/design.md, randomness).
 // Every normal value is normal_from_hash(hash_keys(seed, RngStream::kNavNoise, key, i, j)) with
 // keys that never repeat between channels, kinds or time indices (sim/core/rng.h).
 //
@@ -25,7 +25,7 @@
 namespace sonarloop::vehicle {
 
 // Channel ids of the navigation errors (part of the hash key). Never reuse or renumber
-// (style.md habit 27): recorded datasets depend on them.
+// (docs/style.md habit 27): recorded datasets depend on them.
 enum class NavChannel : std::uint64_t {
   kNorth = 1,
   kEast = 2,

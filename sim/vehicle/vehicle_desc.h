@@ -1,5 +1,5 @@
 #pragma once
-// The vehicle as plain data (style.md habit 1): what a vehicle/mission YAML file says, after
+// The vehicle as plain data (docs/style.md habit 1): what a vehicle/mission YAML file says, after
 // validation, with every default filled in. trajectory.h turns a TrajectoryDesc into a path;
 // nav_sensor.h turns a NavNoiseDesc into a navigation sensor model.
 //

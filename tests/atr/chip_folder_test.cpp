@@ -1,5 +1,5 @@
-// Reading folders of PNG chips (one subfolder per class, optional labels.csv) and the errors a
-// user can make: mixed sizes, an empty class, non-PNG files, bad labels.
+// Reading folders of PNG and JPEG chips (one subfolder per class, optional labels.csv) and the
+// errors a user can make: mixed sizes, an empty class, non-PNG files, bad labels.
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "atr/chip_folder.h"
+#include "drivers/image/jpeg.h"
 #include "drivers/image/png.h"
 #include "tests/support/temp_dir.h"
 
@@ -77,7 +78,7 @@ TEST_CASE("chip folder: unlabelled folders and single files") {
   REQUIRE(f.chips.size() == 2);
   CHECK(f.chips[1].source == "y.png");
   CHECK(f.chips[1].label.empty());
-  const LabelledChip one = read_chip_png((root / "x.png").string());
+  const LabelledChip one = read_chip_file((root / "x.png").string());
   CHECK(one.chip.width == 5);
   CHECK(one.source == (root / "x.png").string());
 }
@@ -124,7 +125,8 @@ TEST_CASE("chip folder: errors name the file and say what is allowed") {
                     Catch::Contains("2.png") && Catch::Contains("subfolder of its class"));
   // nothing at all
   fs::create_directories(base / "none");
-  CHECK_THROWS_WITH(read_chip_folder((base / "none").string()), Catch::Contains("no PNG chips"));
+  CHECK_THROWS_WITH(read_chip_folder((base / "none").string()),
+                    Catch::Contains("no PNG or JPEG chips"));
 }
 
 TEST_CASE("chip folder: labels.csv errors name the line") {
@@ -156,4 +158,72 @@ TEST_CASE("chip folder: labels.csv errors name the line") {
   const ChipFolder f = read_chip_folder(with_csv("file,class,aspect_deg\n1.png,rock,12\n"));
   CHECK(f.chips[1].aspect_deg == 12.0);
   CHECK_FALSE(f.chips[0].aspect_deg.has_value());
+}
+
+TEST_CASE("chip folder: JPEG chips, resampling, listing without pixels") {
+  testing::TempDir dir("atr-chip-folder-jpeg");
+  const fs::path root = dir.path() / "chips";
+  write_chip(root / "a" / "1.png", 8, 6, 1);
+  fs::create_directories(root / "b");
+  const std::vector<std::uint8_t> flat(8 * 6, 90);
+  image::write_jpeg((root / "b" / "2.JPG").string(), 8, 6, 1, flat);
+  // a PNG named .jpg: the first bytes decide
+  write_chip(root / "b" / "3.jpg", 8, 6, 3);
+  const ChipFolder f = read_chip_folder(root.string());
+  REQUIRE(f.chips.size() == 3);
+  CHECK(f.chips[1].source == "b/2.JPG");
+  CHECK(f.chips[1].chip.width == 8);
+  CHECK(f.chips[1].chip.pixels == std::vector<float>(48, 90.0f));  // flat JPEG: exact
+  CHECK(f.chips[2].chip.pixels[5] == static_cast<float>((3 * 37 + 5 * 11) % 251));
+
+  // resampled on reading: every chip 4 x 3, the mean kept
+  ChipFolderOptions o;
+  o.size = ChipSize{4, 3};
+  const ChipFolder small = read_chip_folder(root.string(), o);
+  for (const auto& c : small.chips) {
+    CHECK(c.chip.width == 4);
+    CHECK(c.chip.height == 3);
+  }
+  CHECK(small.chips[1].chip.pixels == std::vector<float>(12, 90.0f));
+
+  // listed only: no pixels until read_folder_chip
+  o = {};
+  o.read_pixels = false;
+  const ChipFolder listed = read_chip_folder(root.string(), o);
+  REQUIRE(listed.chips.size() == 3);
+  CHECK(listed.chips[0].chip.pixels.empty());
+  CHECK(read_folder_chip(listed, 0).pixels == f.chips[0].chip.pixels);
+  CHECK(read_folder_chip(listed, 2, ChipSize{2, 2}).pixels.size() == 4);
+  CHECK(read_chip_file((root / "b" / "2.JPG").string()).chip.width == 8);
+}
+
+TEST_CASE("chip folder: skip_bad lists a corrupt file, a wrong-size chip and a non-image") {
+  testing::TempDir dir("atr-chip-folder-skip");
+  const fs::path root = dir.path() / "chips";
+  write_chip(root / "a" / "1.png", 8, 8, 1);
+  write_chip(root / "a" / "2.png", 8, 8, 2);
+  write_text(root / "a" / "3.png", "corrupt");  // not an image
+  write_chip(root / "a" / "4.png", 8, 7, 4);    // wrong size
+  write_text(root / "b" / "notes.txt", "a note");
+  write_chip(root / "b" / "5.png", 8, 8, 5);
+  write_chip(root / "b" / "deeper" / "6.png", 8, 8, 6);
+  // without skip_bad the first problem stops the reading
+  CHECK_THROWS_WITH(read_chip_folder(root.string()), Catch::Contains("b/deeper"));
+  ChipFolderOptions o;
+  o.skip_bad = true;
+  const ChipFolder f = read_chip_folder(root.string(), o);
+  REQUIRE(f.chips.size() == 3);
+  CHECK(f.chips[2].source == "b/5.png");
+  REQUIRE(f.skipped.size() == 4);
+  CHECK(f.skipped[0].source == "b/deeper");
+  CHECK_THAT(f.skipped[0].reason, Catch::Contains("unexpected folder"));
+  CHECK(f.skipped[1].source == "b/notes.txt");
+  CHECK_THAT(f.skipped[1].reason, Catch::Contains("unexpected file"));
+  CHECK(f.skipped[2].source == "a/3.png");
+  CHECK_THAT(f.skipped[2].reason, Catch::Contains("not a PNG or JPEG"));
+  CHECK(f.skipped[3].source == "a/4.png");
+  CHECK_THAT(f.skipped[3].reason, Catch::Contains("8 x 7") && Catch::Contains("--size"));
+  // with a size, the odd chip is resampled instead of skipped
+  o.size = ChipSize{8, 8};
+  CHECK(read_chip_folder(root.string(), o).chips.size() == 4);
 }

@@ -47,6 +47,8 @@ TEST_CASE("classify allocations: classify() allocates nothing once set up") {
   TrainOptions opt;
   opt.aspect_sectors = 2;
   opt.group_subspaces = true;
+  opt.class_metadata["cylinder"].mine_like = true;
+  opt.class_metadata["manta"].mine_like = true;
   Classifier clf(train_model(train, opt));
   std::vector<Chip> probes;
   for (int c = 0; c < 4; ++c)

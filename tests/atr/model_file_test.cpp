@@ -37,6 +37,8 @@ std::vector<LabelledChip> chips(int per_class, std::uint64_t seed, bool aspects)
 Model trained(bool multi) {
   TrainOptions opt;
   opt.p = 5;
+  opt.class_metadata["cuboid"] = {true, 0.4};
+  opt.class_metadata["manta"] = {true, 0.47};  // rock: not mine-like, height unknown
   if (multi) {
     opt.aspect_sectors = 3;
     opt.group_subspaces = true;
@@ -84,6 +86,40 @@ void put_le32(std::vector<std::uint8_t>& b, std::size_t at, std::uint32_t v) {
 // Rewrites the CRC trailer after an edit, so that the parser sees the edited content.
 void fix_crc(std::vector<std::uint8_t>& b) {
   put_le32(b, b.size() - 4, crc32(std::span(b).first(b.size() - 4)));
+}
+
+// The bytes an older version (1 or 2) would have written for a model without groups: version 2
+// has no class height (and a 0 flags byte), version 1 neither the pre-processing record nor the
+// reject and typical distances.
+std::vector<std::uint8_t> downgrade(const Model& m, int version) {
+  const auto v3 = encode_model(m);
+  std::vector<std::uint8_t> out(v3.begin(), v3.begin() + (version >= 2 ? 60 : 36));
+  out[6] = static_cast<std::uint8_t>(version);
+  std::size_t at = 60;
+  const auto copy = [&](std::size_t n) {
+    out.insert(out.end(), v3.begin() + static_cast<long>(at),
+               v3.begin() + static_cast<long>(at + n));
+    at += n;
+  };
+  for (const ClassModel& c : m.classes) {
+    copy(2 + c.name.size() + 1);  // name and mine_like
+    out.push_back(0);             // the reserved byte
+    ++at;
+    copy(4);  // subspace count
+    if (version >= 2)
+      copy(8);  // reject and typical distances
+    else
+      at += 8;
+    at += 8;  // no height before version 3
+    std::size_t body = 0;
+    for (const auto& sub : c.subspaces)
+      body += 16 + 8 + 8 * sub.rank() + 4 * m.feature_count() * (1 + sub.rank());
+    copy(body);
+  }
+  REQUIRE(at + 4 == v3.size());
+  out.insert(out.end(), 4, 0);
+  fix_crc(out);
+  return out;
 }
 
 }  // namespace
@@ -138,13 +174,17 @@ TEST_CASE("model file: the byte layout is the documented one") {
   CHECK((b[60] | b[61] << 8) == 6);
   CHECK(std::string(b.begin() + 62, b.begin() + 68) == "cuboid");
   CHECK(b[68] == 1);                  // cuboid is mine-like
+  CHECK(b[69] == 1);                  // flags: its height is known
   CHECK(le32(b, 70) == 1);            // one subspace
   CHECK(le32(b, 74) == 0x7F800000u);  // reject distance +infinity: no open-set rejection
   CHECK(le32(b, 78) == 0);            // typical distance 0: not calibrated
+  double h = 0.0;
+  std::memcpy(&h, b.data() + 82, 8);  // height_m (little-endian host)
+  CHECK(h == 0.4);
   // size: header + pre-processing + per class (name record + subspaces) + crc
   std::size_t expect = 36 + 24 + 4;
   for (const auto& c : m.classes) {
-    expect += 2 + c.name.size() + 2 + 4 + 8;
+    expect += 2 + c.name.size() + 2 + 4 + 8 + 8;
     for (const auto& s : c.subspaces) {
       expect += 16 + 8 + 8 * s.rank() + 4 * 48 * (1 + s.rank());
     }
@@ -169,9 +209,24 @@ TEST_CASE("model file: bad magic, version, truncation, trailing bytes and corrup
                     Catch::Contains("bad magic"));
 
   b = good;
-  b[6] = 3;
-  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("unsupported format version 3") &&
-                                              Catch::Contains("reads versions 1 and 2"));
+  b[6] = 4;
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("unsupported format version 4") &&
+                                              Catch::Contains("reads versions 1 to 3"));
+  // class metadata: an unknown flag, a height out of range, a height said unknown but not 0
+  const auto single = encode_model(trained(false));  // first class cuboid, height at 82
+  b = single;
+  b[69] = 2;
+  fix_crc(b);
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("flags byte 2"));
+  b = single;
+  const double bad_h = -1.0;
+  std::memcpy(b.data() + 82, &bad_h, 8);
+  fix_crc(b);
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("cuboid") && Catch::Contains("height"));
+  b = single;
+  b[69] = 0;
+  fix_crc(b);
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("flags say unknown"));
   // a bad pre-processing record: an even multilook window
   b = good;
   put_le32(b, 44, 4);
@@ -222,7 +277,7 @@ TEST_CASE("model file: inconsistent contents are rejected even with a valid chec
   CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("exceeds p = 2"));
   // a NaN in the first mean image (the first class: name "cuboid", 1 subspace, rank 5)
   b = good;
-  const std::size_t mean_at = 36 + 24 + 2 + 6 + 2 + 4 + 8 + 16 + 8 + 8 * 5;
+  const std::size_t mean_at = 36 + 24 + 2 + 6 + 2 + 4 + 8 + 8 + 16 + 8 + 8 * 5;
   put_le32(b, mean_at, 0x7FC00000u);
   fix_crc(b);
   CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("non-finite"));
@@ -275,30 +330,39 @@ TEST_CASE("model file: a pre-processing model round-trips; version 1 reads as no
   CHECK(m.classes[0].typical_distance <= m.classes[0].reject_distance);
   CHECK(encode_model(back) == encode_model(m));
 
-  // a version 1 file: the version 2 bytes without the pre-processing record and without the
-  // reject distance of each class record
+  // a version 1 file: no pre-processing record, no distances, no heights
   const Model plain = trained(false);
-  const auto v2 = encode_model(plain);
-  std::vector<std::uint8_t> v1(v2.begin(), v2.begin() + 36);
-  std::size_t at = 60;
-  for (const ClassModel& c : plain.classes) {
-    const std::size_t head = 2 + c.name.size() + 2 + 4;  // up to the subspace count
-    v1.insert(v1.end(), v2.begin() + static_cast<long>(at),
-              v2.begin() + static_cast<long>(at + head));
-    at += head + 8;  // skip the reject and typical distances
-    std::size_t body = 0;
-    for (const auto& sub : c.subspaces)
-      body += 16 + 8 + 8 * sub.rank() + 4 * plain.feature_count() * (1 + sub.rank());
-    v1.insert(v1.end(), v2.begin() + static_cast<long>(at),
-              v2.begin() + static_cast<long>(at + body));
-    at += body;
-  }
-  REQUIRE(at + 4 == v2.size());
-  v1.insert(v1.end(), 4, 0);  // the checksum, fixed below
-  v1[6] = 1;
-  fix_crc(v1);
+  const auto v1 = downgrade(plain, 1);
   const Model old = decode_model(v1, "v1");
   CHECK(old.preprocess.is_identity());
   CHECK(std::isinf(old.classes[0].reject_distance));
   expect_same(plain, old);
+  CHECK_FALSE(old.classes[0].height_m);
+}
+
+TEST_CASE("model file: class metadata round-trips; version 2 files still load") {
+  const Model m = trained(false);
+  REQUIRE(m.classes[0].name == "cuboid");
+  REQUIRE(m.classes[2].name == "rock");
+  std::uint16_t version = 0;
+  const Model back = decode_model(encode_model(m), "meta", &version);
+  CHECK(version == kModelFileVersion);
+  for (std::size_t c = 0; c < m.classes.size(); ++c) {
+    CHECK(back.classes[c].mine_like == m.classes[c].mine_like);
+    CHECK(back.classes[c].height_m == m.classes[c].height_m);
+  }
+  CHECK(back.classes[0].height_m == 0.4);
+  CHECK(back.classes[1].height_m == 0.47);
+  CHECK_FALSE(back.classes[2].height_m);
+  CHECK_FALSE(back.classes[2].mine_like);
+
+  // version 2: mine_like was stored, heights were not (unknown on load)
+  const Model old = decode_model(downgrade(m, 2), "v2", &version);
+  CHECK(version == 2);
+  expect_same(m, old);
+  CHECK(old.classes[0].mine_like);
+  CHECK_FALSE(old.classes[2].mine_like);
+  for (const auto& c : old.classes)
+    CHECK_FALSE(c.height_m);
+  CHECK(old.classes[0].reject_distance == m.classes[0].reject_distance);
 }

@@ -246,37 +246,45 @@ TEST_CASE("subspace classifier: bad training input and options are errors naming
   opt.aspect_sectors = 4;
   CHECK_THROWS_WITH(train_model(train, opt), Catch::Contains("no aspect angle"));
   opt = {};
-  opt.mine_classes = std::vector<std::string>{"torpedo"};
+  opt.class_metadata["cylinder"].height_m = -0.5;
   CHECK_THROWS_WITH(train_model(train, opt),
-                    Catch::Contains("torpedo") && Catch::Contains("cylinder, hemisphere"));
+                    Catch::Contains("cylinder") && Catch::Contains("height"));
   opt = {};
-  opt.group_subspaces = true;
-  opt.mine_classes = std::vector<std::string>{};
+  opt.group_subspaces = true;  // no class is mine-like
   CHECK_THROWS_WITH(train_model(train, opt), Catch::Contains("both mine-like and non-mine"));
   train[2].label.clear();
   CHECK_THROWS_WITH(train_model(train), Catch::Contains("no class label"));
 }
 
 TEST_CASE("subspace classifier: mine / non-mine on top of identification (Section 4.1.2)") {
-  // cylinder and manta are mine-like (sim/targets), hemisphere and rock are not
-  CHECK(default_mine_like("manta"));
-  CHECK(default_mine_like("cylinder"));
-  CHECK_FALSE(default_mine_like("hemisphere"));
-  CHECK_FALSE(default_mine_like("rock"));
+  // the metadata given: cylinder and manta are mine-like, hemisphere and rock are not
+  const auto is_mine_class = [](const std::string& n) { return n == "cylinder" || n == "manta"; };
+  TrainOptions with_meta;
+  with_meta.class_metadata["cylinder"] = {true, 0.3};
+  with_meta.class_metadata["manta"] = {true, {}};
+  with_meta.class_metadata["torpedo"] = {true, 0.5};  // not a class here: ignored
   const LinearClasses lc = testing::make_linear_classes(4, 16, 16, 3, 23);
   const auto train = linear_set(lc, 20, 10, 0.05);
   const auto test = linear_set(lc, 10, 11, 0.05);
-  const Model m = train_model(train);
+  const Model m = train_model(train, with_meta);
   CHECK(m.classes[0].mine_like);
   CHECK_FALSE(m.classes[1].mine_like);
   CHECK(m.classes[2].mine_like);
   CHECK_FALSE(m.classes[3].mine_like);
+  CHECK(m.has_mine_like_class());
+  CHECK(m.classes[0].height_m == 0.3);
+  CHECK_FALSE(m.classes[2].height_m);
   CHECK(m.groups.empty());
+  // without metadata no class is mine-like and no height is known
+  const Model bare = train_model(train);
+  CHECK_FALSE(bare.has_mine_like_class());
+  for (const auto& c : bare.classes)
+    CHECK_FALSE(c.height_m);
   Classifier clf(m);
   for (const auto& t : test) {
     REQUIRE(clf.classify(t.chip.view()).ok());
     const auto& r = clf.result();
-    CHECK(r.mine_like == default_mine_like(t.label));
+    CHECK(r.mine_like == is_mine_class(t.label));
     CHECK(r.mine_like == r.mine_like_by_identity);
     CHECK_FALSE(r.by_group_subspaces);
     // group scores: the smallest class distance in each group
@@ -284,15 +292,15 @@ TEST_CASE("subspace classifier: mine / non-mine on top of identification (Sectio
     CHECK(r.non_mine_distance == std::min(r.class_distance[1], r.class_distance[3]));
   }
 
-  // an explicit list overrides the default
+  // other metadata, other flags
   TrainOptions opt;
-  opt.mine_classes = std::vector<std::string>{"rock"};
+  opt.class_metadata["rock"].mine_like = true;
   const Model m2 = train_model(train, opt);
   CHECK_FALSE(m2.classes[0].mine_like);
   CHECK(m2.classes[3].mine_like);
 
   // dedicated pooled group subspaces
-  opt = {};
+  opt = with_meta;
   opt.group_subspaces = true;
   const Model mg = train_model(train, opt);
   REQUIRE(mg.groups.size() == 2);
@@ -306,8 +314,8 @@ TEST_CASE("subspace classifier: mine / non-mine on top of identification (Sectio
     const auto& r = clg.result();
     CHECK(r.by_group_subspaces);
     CHECK(r.mine_like == (r.mine_distance < r.non_mine_distance));
-    CHECK(r.mine_like_by_identity == default_mine_like(t.label));
-    agree += r.mine_like == default_mine_like(t.label);
+    CHECK(r.mine_like_by_identity == is_mine_class(t.label));
+    agree += r.mine_like == is_mine_class(t.label);
   }
   // two pooled 8-dimensional groups still fit in p = 20 dimensions: exact here
   CHECK(agree == static_cast<int>(test.size()));

@@ -1,5 +1,5 @@
 // Tests of the scene loader (config/loader/scene_loader.h): the reference file gives the
-// defaults, every validation rule has a case, and a seeded randomized test (style.md habit 22)
+// defaults, every validation rule has a case, and a seeded randomized test (docs/style.md habit 22)
 // round-trips random valid scenarios and checks that single-key corruptions are always rejected
 // with a ConfigError.
 #include "config/loader/scene_loader.h"
@@ -675,7 +675,7 @@ TEST_CASE("scene_loader: parse_scene_node on part of a larger document") {
 }
 
 // ---------------------------------------------------------------------------------------------
-// seeded randomized test (style.md habit 22)
+// seeded randomized test (docs/style.md habit 22)
 
 namespace {
 

@@ -1,7 +1,7 @@
 // Tests of the sonar loader (config/loader/sonar_loader.h): every key and its unit conversion,
 // the defaults (the pailhas_strip preset), the built-in presets, preset + override, every
-// validation rule, and a seeded randomized test (style.md habit 22) that round-trips random valid
-// sonars and checks that corruptions are always rejected with a ConfigError.
+// validation rule, and a seeded randomized test (docs/style.md habit 22) that round-trips random
+// valid sonars and checks that corruptions are always rejected with a ConfigError.
 #include "config/loader/sonar_loader.h"
 
 #include <algorithm>
@@ -655,7 +655,7 @@ TEST_CASE("sonar_loader: format_sonar_yaml quotes names and round-trips unusual 
 }
 
 // ---------------------------------------------------------------------------------------------
-// seeded randomized test (style.md habit 22)
+// seeded randomized test (docs/style.md habit 22)
 
 namespace {
 

@@ -2,8 +2,8 @@
 // conversion, the defaults (VehicleDesc{}), each trajectory kind and depth mode, keys of other
 // kinds and modes, every validation rule (per-key ranges, validate()'s cross-field rules, the
 // path limits, the seabed extent in altitude mode), the shipped scenarios' vehicles,
-// config/reference.yaml, and a seeded randomized test (style.md habit 22) that round-trips random
-// valid vehicles and checks that corruptions are always rejected with a ConfigError.
+// config/reference.yaml, and a seeded randomized test (docs/style.md habit 22) that round-trips
+// random valid vehicles and checks that corruptions are always rejected with a ConfigError.
 #include "config/loader/vehicle_loader.h"
 
 #include <algorithm>
@@ -1064,7 +1064,7 @@ TEST_CASE("vehicle_loader: format_vehicle_yaml writes the keys of the kind and r
 }
 
 // ---------------------------------------------------------------------------------------------
-// seeded randomized test (style.md habit 22)
+// seeded randomized test (docs/style.md habit 22)
 
 namespace {
 

@@ -380,7 +380,7 @@ TEST_CASE("replay xtf: a ping with a corrupt year is paced by the ping period, w
     if (bytes[good.packet_offsets[i] + 2] != xtf::kHeaderTypeSonar) continue;
     if (ping++ != 200) continue;
     corrupt_offset = good.packet_offsets[i];
-    const std::uint64_t year_at = corrupt_offset + 14;  // WORD Year (formats.md 1.5)
+    const std::uint64_t year_at = corrupt_offset + 14;  // WORD Year (docs/formats.md 1.5)
     const unsigned year = bytes[year_at] | (bytes[year_at + 1] << 8);
     const unsigned bad = year + 197;
     bytes[year_at] = static_cast<std::uint8_t>(bad & 0xFF);

@@ -41,8 +41,9 @@ std::map<std::string, std::string> tree(const fs::path& root) {
 }
 
 // Checks a dataset root with Python's csv module: labels.csv parses; every row names an
-// existing PNG in its class folder, of the stated size; every PNG has exactly one row; the
-// classes are the expected ones, balanced; aspect_deg in [0, 360); no temporary files.
+// existing PNG in its class folder, of the stated size, with its label image; every chip PNG has
+// exactly one row; the classes are the expected ones, balanced; aspect_deg in [0, 360); no
+// temporary files.
 // Arguments: root, expected rows (-1: any), width, height, classes (comma list).
 constexpr const char* kCheckScript = R"py(
 import collections, csv, os, struct, sys
@@ -66,6 +67,8 @@ for r in rows:
     files.add(r['file'])
     assert r['file'].split('/')[0] == r['class'], r['file']
     assert os.path.isfile(os.path.join(root, r['file'])), r['file']
+    label = os.path.join(root, os.path.dirname(r['file']), r['label_file'])
+    assert png_size(label) == (w, h), label
     assert png_size(os.path.join(root, r['file'])) == (w, h) == (int(r['width']), int(r['height']))
     assert 0.0 <= float(r['aspect_deg']) < 360.0
     assert 2.0 <= float(r['altitude_m']) <= 10.0
@@ -76,7 +79,7 @@ on_disk = set()
 for d, _, names in os.walk(root):
     for name in names:
         assert not name.endswith('.tmp'), name
-        if name.endswith('.png'):
+        if name.endswith('.png') and not name.endswith('_label.png'):
             on_disk.add(os.path.relpath(os.path.join(d, name), root).replace(os.sep, '/'))
 assert on_disk == files, (sorted(on_disk ^ files))[:5]
 if n >= 0:
@@ -110,7 +113,7 @@ TEST_CASE("dataset cli: a tiny set, byte-identical on 1 or 2 threads, read back 
   REQUIRE(run("dataset --out " + dir.file("b") + common + " --threads 2") == 0);
   const auto a = tree(dir.path() / "a");
   const auto b = tree(dir.path() / "b");
-  REQUIRE(a.size() == 4 * 3 + 2);  // 12 chips, labels.csv, dataset.json
+  REQUIRE(a.size() == 4 * 3 * 2 + 2);  // 12 chips, their label images, labels.csv, dataset.json
   CHECK(a == b);
   CHECK(a.count("manta/000000.png") == 1);
   CHECK(a.count("rockan/000001.png") == 1);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "atr/model_file.h"
+#include "drivers/image/jpeg.h"
 #include "drivers/image/png.h"
 #include "tests/atr/synthetic_chips.h"
 #include "tests/support/temp_dir.h"
@@ -69,13 +70,16 @@ TEST_CASE("train/classify cli: train on PNG chips, classify a labelled test fold
   REQUIRE(run(dir, "train " + train.string() + " --out " + model) == 0);
   const std::string train_out = slurp(dir.file("stdout.txt"));
   CHECK_THAT(train_out, Catch::Contains("36 chips") && Catch::Contains("manta") &&
-                            Catch::Contains("mine-like") && Catch::Contains("rank 11"));
+                            Catch::Contains("mine-like") && Catch::Contains("rank 11") &&
+                            Catch::Contains("height 0.47 m"));
   const atr::Model m = atr::load_model(model);
   REQUIRE(m.classes.size() == 3);
   CHECK(m.classes[0].name == "cylinder");
   CHECK(m.classes[0].mine_like);
+  CHECK(m.classes[0].height_m == Approx(0.3));  // the simulator's cylinder: 30 cm diameter
   CHECK(m.classes[2].name == "rock");
   CHECK_FALSE(m.classes[2].mine_like);
+  CHECK_FALSE(m.classes[2].height_m);
   CHECK(m.p == 20);
   CHECK(m.chip_width == 16);
 
@@ -217,4 +221,111 @@ TEST_CASE("train/classify cli: usage and input errors") {
   std::ofstream(dir.file("bad.slpca")) << "hello";
   CHECK(run(dir, "classify " + dir.file("bad.slpca") + " " + train.string()) == 1);
   CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("bad magic"));
+}
+
+TEST_CASE("train/classify cli: real chips: JPEG, --size, --skip-bad-chips, class metadata") {
+  testing::TempDir dir("train-classify-cli-real");
+  const fs::path root = dir.path() / "real";
+  // three classes that are no simulated target type; beta as JPEG, gamma at twice the size
+  const auto lc = testing::make_linear_classes(3, 16, 16, 3, 51);
+  const std::vector<std::string> names = {"alpha", "beta", "gamma"};
+  Rng rng(8, RngStream::kTraining, 6);
+  for (int c = 0; c < 3; ++c) {
+    const fs::path d = root / names[static_cast<std::size_t>(c)];
+    fs::create_directories(d);
+    for (int i = 0; i < 8; ++i) {
+      const std::vector<std::uint8_t> px =
+          testing::to_gray8(testing::sample_linear(lc, c, rng, 0.02));
+      char name[32];
+      if (c == 1) {
+        std::snprintf(name, sizeof name, "%03d.jpg", i);
+        image::write_jpeg((d / name).string(), 16, 16, 1, px, 95);
+      } else {
+        std::snprintf(name, sizeof name, "%03d.png", i);
+        image::write_png_gray8((d / name).string(), 16, 16, px);
+      }
+    }
+  }
+  // bad files: a corrupt image, a chip of another size, a file that is no image
+  std::ofstream(root / "alpha" / "corrupt.png") << "not an image at all";
+  std::vector<std::uint8_t> odd(144);
+  for (std::size_t i = 0; i < odd.size(); ++i)
+    odd[i] = static_cast<std::uint8_t>(i);
+  image::write_png_gray8((root / "beta" / "odd.png").string(), 12, 12, odd);
+  std::ofstream(root / "gamma" / "notes.txt") << "survey notes";
+  const std::string model = dir.file("real.slpca");
+
+  // without --skip-bad-chips the first bad file stops training
+  CHECK(run(dir, "train " + root.string() + " --out " + model) == 1);
+  CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("notes.txt"));
+
+  // with it: one line each, and training goes on
+  REQUIRE(run(dir, "train " + root.string() + " --out " + model + " --skip-bad-chips") == 0);
+  const std::string err = slurp(dir.file("stderr.txt"));
+  CHECK_THAT(err, Catch::Contains("skipped 'alpha/corrupt.png'") &&
+                      Catch::Contains("not a PNG or JPEG") &&
+                      Catch::Contains("skipped 'beta/odd.png'") && Catch::Contains("12 x 12") &&
+                      Catch::Contains("skipped 'gamma/notes.txt'"));
+  std::size_t lines = 0;
+  for (std::size_t at = err.find("skipped '"); at != std::string::npos;
+       at = err.find("skipped '", at + 1))
+    ++lines;
+  CHECK(lines == 3);
+  std::string out = slurp(dir.file("stdout.txt"));
+  CHECK_THAT(out, Catch::Contains("trained on 24 chips of 16 x 16") &&
+                      Catch::Contains("skipped 3 bad chips") &&
+                      Catch::Contains("no class is mine-like") && Catch::Contains("height ?"));
+  atr::Model m = atr::load_model(model);
+  for (const auto& c : m.classes) {
+    CHECK_FALSE(c.mine_like);
+    CHECK_FALSE(c.height_m);
+  }
+
+  // no class is mine-like: classify prints no mine / non-mine decision or score
+  REQUIRE(run(dir, "classify " + model + " " + root.string() + " --skip-bad-chips") == 0);
+  out = slurp(dir.file("stdout.txt"));
+  CHECK_THAT(out, Catch::Contains("classified 24 chips (1 rejected)") &&
+                      Catch::Contains("skipped 2 unreadable files") &&
+                      Catch::Contains("accuracy:") && !Catch::Contains("mine"));
+  CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("skipped 'alpha/corrupt.png'") &&
+                                                Catch::Contains("skipped 'gamma/notes.txt'") &&
+                                                Catch::Contains("beta/odd.png"));
+
+  // --size resamples every chip: the odd one now trains, and the model is 8 x 8
+  REQUIRE(
+      run(dir, "train " + root.string() + " --out " + dir.file("small.slpca") +
+                   " --skip-bad-chips --size 8x8 --mine-like beta --height beta=0.3,alpha=0.25") ==
+      0);
+  out = slurp(dir.file("stdout.txt"));
+  CHECK_THAT(out, Catch::Contains("trained on 25 chips of 8 x 8 pixels (resampled)") &&
+                      Catch::Contains("skipped 2 bad chips") && Catch::Contains("height 0.30 m") &&
+                      !Catch::Contains("no class is mine-like"));
+  m = atr::load_model(dir.file("small.slpca"));
+  REQUIRE(m.classes.size() == 3);
+  CHECK(m.chip_width == 8);
+  CHECK_FALSE(m.classes[0].mine_like);
+  CHECK(m.classes[0].height_m == 0.25);
+  CHECK(m.classes[1].mine_like);
+  CHECK(m.classes[1].height_m == 0.3);
+  CHECK_FALSE(m.classes[2].height_m);
+  // classify resamples too, and now decides mine / non-mine
+  REQUIRE(run(dir, "classify " + dir.file("small.slpca") + " " + root.string() +
+                       " --skip-bad-chips --size 8x8") == 0);
+  CHECK_THAT(slurp(dir.file("stdout.txt")), Catch::Contains("classified 25 chips (0 rejected)") &&
+                                                Catch::Contains("mine / non-mine:"));
+  // without --size the 16 x 16 chips do not fit the 8 x 8 model: rejected, named
+  CHECK(run(dir, "classify " + dir.file("small.slpca") + " " + root.string() +
+                     " --skip-bad-chips --quiet") == 1);
+  CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("8 x 8"));
+
+  // option errors name the value
+  CHECK(run(dir, "train " + root.string() + " --out " + model + " --size 8by8") == 2);
+  CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("--size"));
+  CHECK(run(dir, "train " + root.string() + " --out " + model +
+                     " --skip-bad-chips --mine-like delta") == 2);
+  CHECK_THAT(slurp(dir.file("stderr.txt")),
+             Catch::Contains("delta") && Catch::Contains("alpha, beta, gamma"));
+  CHECK(run(dir, "train " + root.string() + " --out " + model +
+                     " --skip-bad-chips --height beta=-1") == 2);
+  CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("CLASS=METRES"));
 }

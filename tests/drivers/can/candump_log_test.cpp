@@ -58,7 +58,7 @@ std::string parse_error(const std::string& line) {
   return error;
 }
 
-// The eight reference frames of formats.md 2.4 (SA 0x23, SID 7).
+// The eight reference frames of docs/formats.md 2.4 (SA 0x23, SID 7).
 struct Reference {
   std::int64_t t_ns;
   std::uint32_t id;
@@ -77,7 +77,7 @@ constexpr Reference kReference[] = {
 
 }  // namespace
 
-TEST_CASE("candump writer: exact can-utils line format (formats.md 2.4 reference log)") {
+TEST_CASE("candump writer: exact can-utils line format (docs/formats.md 2.4 reference log)") {
   TempDir dir("candump-format");
   const std::string path = dir.file("nav.log");
   {

@@ -2,7 +2,8 @@
 server: receives N frames and checks each against the pattern the C++ test sends, then sends M
 frames back. Usage: python_socketcand_peer.py HOST PORT N M. Exit 0 when all N frames arrived in
 order with exact ids, data and timestamps and python-can logged no "Bad data" warning (what a
-separator after each frame caused whenever several frames arrived in one read, formats.md 4.4)."""
+separator after each frame caused whenever several frames arrived in one read,
+docs/formats.md 4.4)."""
 import logging
 import sys
 import time

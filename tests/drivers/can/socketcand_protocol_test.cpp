@@ -18,7 +18,7 @@ CanFrame nav_frame() {
 
 }  // namespace
 
-TEST_CASE("socketcand: frame and send elements are formatted as formats.md 4.4 shows") {
+TEST_CASE("socketcand: frame and send elements are formatted as docs/formats.md 4.4 shows") {
   char buf[128];
   const std::size_t n = format_socketcand_frame(nav_frame(), 1699999999123456789, buf, sizeof buf);
   CHECK(std::string(buf, n) == "\n< frame 09F80123 1699999999.123456 00E6B523B1AC6A06 >");

@@ -6,7 +6,7 @@
 
 using namespace sonarloop::n2k;
 
-TEST_CASE("n2k can id: the eight nav PGNs from source 0x23 (formats.md 2.1 table)") {
+TEST_CASE("n2k can id: the eight nav PGNs from source 0x23 (docs/formats.md 2.1 table)") {
   struct Row {
     std::uint32_t pgn;
     std::uint8_t prio;

@@ -83,7 +83,7 @@ constexpr int kSamples = 5000;
 
 }  // namespace
 
-TEST_CASE("n2k: the eight reference frames of formats.md 2.4 encode byte-exactly") {
+TEST_CASE("n2k: the eight reference frames of docs/formats.md 2.4 encode byte-exactly") {
   PositionRapidUpdate pos{59.9123456, 10.7654321};
   CHECK(frame_to_text(encode(pos, kSource)) == "09F80123#00E6B523B1AC6A06");
 

@@ -199,7 +199,7 @@ TEST_CASE("the real Iver recording: 461 pings of 2 x 1024 uint16 samples at 600 
 }
 
 TEST_CASE("the real Iver recording: port samples are stored far range first", "[xtf][real]") {
-  // Evidence for formats.md 1.7: the first returns (transmit/nadir, saturated at 32767) are at
+  // Evidence for docs/formats.md 1.7: the first returns (transmit/nadir, saturated at 32767) are at
   // the END of the port array and the START of the starboard array; read nearest-first the two
   // sides' mean profiles agree.
   const XtfFileContents file = read_all_pings(kRealFile);

@@ -9,14 +9,14 @@ using Catch::Matchers::WithinRel;
 
 namespace {
 
-// Francois-Garrison at the reference water of physics.md §1 (T 10 °C, S 35 ppt, pH 8, D 0 m)
+// Francois-Garrison at the reference water of docs/physics.md §1 (T 10 °C, S 35 ppt, pH 8, D 0 m)
 double fg_ref(double freq_hz) {
   return francois_garrison_db_per_km(freq_hz, 10.0, 35.0, 0.0, 8.0);
 }
 
 }  // namespace
 
-TEST_CASE("absorption: F&G full-precision pins (physics.md §6 items 1, 2, 4, 5)") {
+TEST_CASE("absorption: F&G full-precision pins (docs/physics.md §6 items 1, 2, 4, 5)") {
   // uacpy test_numeric_contracts.py, AttenMod.f90; rel 1e-9
   CHECK_THAT(fg_ref(1e5), WithinRel(33.63031641787127, 1e-9));
   CHECK_THAT(fg_ref(1e4), WithinRel(0.962637291817115, 1e-9));
@@ -52,7 +52,7 @@ TEST_CASE("absorption: F&G 1982b Table IV published values (item 3, §1a)") {
 TEST_CASE("absorption: F&G intermediate values and the split into three terms (§1, §1c)") {
   CHECK_THAT(sound_speed_fg_m_s(10.0, 35.0, 0.0), WithinAbs(1485.75, 1e-9));
   CHECK_THAT(sound_speed_fg_m_s(10.0, 35.0, 1000.0), WithinAbs(1485.75 + 16.7, 1e-9));
-  // boric / MgSO4 / water at T10 S35 pH8 D0 (physics.md §1c, 3 decimals)
+  // boric / MgSO4 / water at T10 S35 pH8 D0 (docs/physics.md §1c, 3 decimals)
   const auto t80 = francois_garrison_terms(80e3, 10.0, 35.0, 0.0, 8.0);
   CHECK_THAT(t80.boric_acid_db_per_km, WithinAbs(0.116, 0.0005));
   CHECK_THAT(t80.magnesium_sulphate_db_per_km, WithinAbs(25.219, 0.0005));

@@ -43,7 +43,7 @@ TEST_CASE("apl sediment: grain-size relations, sandy gravel and very fine sand (
   CHECK(v.sigma2 == 0.002);
 }
 
-TEST_CASE("apl sediment: every row of TR 9407 Table 2 as printed in physics.md §2.2") {
+TEST_CASE("apl sediment: every row of TR 9407 Table 2 as printed in docs/physics.md §2.2") {
   struct Row {
     const char* key;
     double rho, nu, delta, sigma2, w2;

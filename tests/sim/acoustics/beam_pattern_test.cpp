@@ -11,7 +11,7 @@ using Catch::Matchers::WithinRel;
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-// physics.md §3 worked example: f = 100 kHz, c = 1500 m/s, l = 1 m
+// docs/physics.md §3 worked example: f = 100 kHz, c = 1500 m/s, l = 1 m
 constexpr double kLambda = 1500.0 / 100e3;
 constexpr double kLength = 1.0;
 
@@ -31,7 +31,7 @@ TEST_CASE("beam pattern: sinc is exact at 0 and continuous across the series swi
   CHECK(sinc(-0.3) == sinc(0.3));
 }
 
-TEST_CASE("beam pattern: half-power points and first sidelobe (physics.md §4, §6 item 19)") {
+TEST_CASE("beam pattern: half-power points and first sidelobe (docs/physics.md §4, §6 item 19)") {
   CHECK_THAT(sinc(1.391557), WithinAbs(1.0 / std::sqrt(2.0), 1e-6));
   CHECK_THAT(sinc(kSincHalfPowerX), WithinAbs(1.0 / std::sqrt(2.0), 1e-15));
   CHECK_THAT(sinc(kSincSquaredHalfPowerX) * sinc(kSincSquaredHalfPowerX),
@@ -44,7 +44,7 @@ TEST_CASE("beam pattern: half-power points and first sidelobe (physics.md §4, �
   CHECK(std::fabs(sinc(kSincFirstSidelobeX + 0.01)) < peak);
 }
 
-TEST_CASE("beam pattern: worked numbers of physics.md §3 (l 1 m, 100 kHz)") {
+TEST_CASE("beam pattern: worked numbers of docs/physics.md §3 (l 1 m, 100 kHz)") {
   CHECK_THAT(line_array_pattern(0.2 * kDeg, kLength, kLambda), WithinAbs(0.91327, 5e-6));
   CHECK_THAT(line_array_pattern(0.5 * kDeg, kLength, kLambda), WithinAbs(0.52919, 5e-6));
   CHECK_THAT(line_array_pattern(1.0 * kDeg, kLength, kLambda), WithinAbs(-0.13442, 5e-6));

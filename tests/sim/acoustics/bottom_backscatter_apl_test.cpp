@@ -39,7 +39,7 @@ double kirchhoff_integral(double q, double alpha) {
   return sum * h / 3.0;
 }
 
-// exact Kirchhoff cross section of a power-law surface (physics.md §2.4 ★):
+// exact Kirchhoff cross section of a power-law surface (docs/physics.md §2.4 ★):
 // |R(90°)|²/(8π sin²θ cos²θ)·∫J0(u)exp(−q u^(2α)) u du, q = q_c sin²θ / cos^(2α)θ
 double exact_kirchhoff_sigma(double grazing_rad, const AplBackscatterSetup& s) {
   const double sn = std::sin(grazing_rad);
@@ -106,7 +106,7 @@ TEST_CASE("apl backscatter: closed-form Kirchhoff against the exact integral (it
   }
 }
 
-TEST_CASE("apl backscatter: Pailhas sediments, physics.md §2.5(b), c1 1528 (item 15)") {
+TEST_CASE("apl backscatter: Pailhas sediments, docs/physics.md §2.5(b), c1 1528 (item 15)") {
   struct Row {
     const char* key;
     double sb[3][3];  // [30, 100, 200 kHz][10°, 30°, 60°]
@@ -145,7 +145,8 @@ TEST_CASE("apl backscatter: Pailhas sediments, physics.md §2.5(b), c1 1528 (ite
              WithinAbs(-17.49, 0.1));
 }
 
-TEST_CASE("apl backscatter: uacpy doc values at 20 deg, c1 1500 (physics.md §2.5(a), item 14)") {
+TEST_CASE(
+    "apl backscatter: uacpy doc values at 20 deg, c1 1500 (docs/physics.md §2.5(a), item 14)") {
   struct Row {
     const char* key;
     double freq_hz, doc_db, reimpl_db;
@@ -163,7 +164,7 @@ TEST_CASE("apl backscatter: uacpy doc values at 20 deg, c1 1500 (physics.md §2.
   }
 }
 
-TEST_CASE("apl backscatter: component diagnostics (physics.md §2.4, §2.5)") {
+TEST_CASE("apl backscatter: component diagnostics (docs/physics.md §2.4, §2.5)") {
   // very fine sand at 30 kHz: small slope, volume term dominant at 30°, composite branch
   const AplBackscatterSetup vfs = make_apl_backscatter_setup(30e3, by_key("very_fine_sand"));
   CHECK_THAT(vfs.slope_rms, WithinAbs(0.0370, 0.00005));

@@ -12,7 +12,7 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 }
 
-TEST_CASE("lambert: Mackenzie -27 dB (physics.md §2.6, §6 item 17)") {
+TEST_CASE("lambert: Mackenzie -27 dB (docs/physics.md §2.6, §6 item 17)") {
   CHECK_THAT(lambert_backscatter_db(30.0 * kDeg), WithinAbs(-33.021, 0.001));
   CHECK_THAT(lambert_backscatter_db(10.0 * kDeg), WithinAbs(-42.207, 0.001));
   CHECK_THAT(lambert_backscatter_db(90.0 * kDeg), WithinAbs(-27.0, 1e-12));

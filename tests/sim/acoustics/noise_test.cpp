@@ -5,7 +5,7 @@
 using namespace sonarloop::acoustics;
 using Catch::Matchers::WithinAbs;
 
-TEST_CASE("noise: Mellen thermal noise (physics.md §4 table, §6 item 20)") {
+TEST_CASE("noise: Mellen thermal noise (docs/physics.md §4 table, §6 item 20)") {
   CHECK_THAT(thermal_noise_spectrum_db(100e3), WithinAbs(25.000, 0.0005));
   CHECK_THAT(thermal_noise_spectrum_db(300e3), WithinAbs(34.542, 0.0005));
   CHECK_THAT(thermal_noise_spectrum_db(80e3), WithinAbs(23.062, 0.0005));

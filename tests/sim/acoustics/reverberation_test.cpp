@@ -10,13 +10,13 @@ using namespace sonarloop::acoustics;
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
 
-TEST_CASE("reverberation: Pailhas case of physics.md §4 (item 18)") {
+TEST_CASE("reverberation: Pailhas case of docs/physics.md §4 (item 18)") {
   // 100 kHz, r 50 m, α 33.6303 dB/km, SL 210, S_s −30, τ 100 µs, φ 0.013288 rad, c 1500
   const double tl = transmission_loss_db(50.0, 33.6303e-3);
   CHECK_THAT(tl, WithinAbs(35.6609, 0.0001));
   const double area = reverberation_cell_area_m2(50.0, 100e-6, 1500.0, 0.013288);
   CHECK_THAT(area, WithinAbs(0.049830, 5e-7));
-  // physics.md prints −13.0249, from the unrounded φ = 0.0132886; with φ = 0.013288 it is
+  // docs/physics.md prints −13.0249, from the unrounded φ = 0.0132886; with φ = 0.013288 it is
   // −13.0251, so the check allows the rounding of φ
   CHECK_THAT(10.0 * std::log10(area), WithinAbs(-13.0249, 0.0003));
   CHECK_THAT(boundary_reverberation_level_db(210.0, tl, -30.0, area), WithinAbs(95.6532, 0.001));

@@ -14,7 +14,7 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 }
 
-TEST_CASE("geometry: ranges, grazing angle and resolutions (physics.md §3, item 21)") {
+TEST_CASE("geometry: ranges, grazing angle and resolutions (docs/physics.md §3, item 21)") {
   CHECK_THAT(ground_range_m(50.0, 10.0), WithinAbs(48.9898, 5e-5));
   const double grazing = grazing_angle_rad(50.0, 10.0);
   CHECK_THAT(grazing / kDeg, WithinAbs(11.537, 5e-4));

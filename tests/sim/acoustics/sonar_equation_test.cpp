@@ -11,7 +11,8 @@
 using namespace sonarloop::acoustics;
 using Catch::Matchers::WithinAbs;
 
-TEST_CASE("sonar equation: echo level of a seabed cell equals RL on axis (physics.md §0, §3)") {
+TEST_CASE(
+    "sonar equation: echo level of a seabed cell equals RL on axis (docs/physics.md §0, §3)") {
   const double tl = transmission_loss_db(50.0, 33.6303e-3);
   const double area = reverberation_cell_area_m2(50.0, 100e-6, 1500.0, 0.013288);
   const double strength = -30.0 + 10.0 * std::log10(area);

@@ -15,7 +15,7 @@ double alpha_db_per_m(double freq_hz) {
 
 }  // namespace
 
-TEST_CASE("spreading: TL examples of physics.md §1c and §6 item 10") {
+TEST_CASE("spreading: TL examples of docs/physics.md §1c and §6 item 10") {
   CHECK_THAT(transmission_loss_db(100.0, alpha_db_per_m(100e3)), WithinAbs(43.363, 0.001));
   CHECK_THAT(transmission_loss_db(200.0, alpha_db_per_m(100e3)), WithinAbs(52.747, 0.001));
   CHECK_THAT(transmission_loss_db(50.0, alpha_db_per_m(300e3)), WithinAbs(37.636, 0.001));

@@ -57,12 +57,12 @@ double tessellated_sphere_cross_section(double mu, double radius, int n_polar, i
   return sigma;
 }
 
-// seawater of physics.md §4: 1027 kg/m³, 1500 m/s
+// seawater of docs/physics.md §4: 1027 kg/m³, 1500 m/s
 const double kZWater = acoustic_impedance(1027.0, 1500.0);
 
 }  // namespace
 
-TEST_CASE("target scattering: impedance reflectance table of physics.md §4 (item 23)") {
+TEST_CASE("target scattering: impedance reflectance table of docs/physics.md §4 (item 23)") {
   CHECK_THAT(kZWater, WithinRel(1.5405e6, 1e-12));
   const double z_steel = acoustic_impedance(7850.0, 5900.0);
   CHECK_THAT(z_steel, WithinRel(4.632e7, 1e-3));
@@ -87,7 +87,7 @@ TEST_CASE("target scattering: the documented mu = R^2/pi choice") {
   CHECK_THAT(lambert_mu_from_reflectance(r_steel), WithinAbs(0.8754 / std::numbers::pi, 2e-5));
 }
 
-TEST_CASE("target scattering: Lambertian facet and sphere (physics.md §4, item 23)") {
+TEST_CASE("target scattering: Lambertian facet and sphere (docs/physics.md §4, item 23)") {
   CHECK(lambert_facet_backscatter(1.0, 0.2) == 0.2);
   CHECK_THAT(lambert_facet_backscatter(0.5, 0.2), WithinRel(0.05, 1e-15));
   CHECK(lambert_facet_backscatter(-0.5, 0.2) == 0.0);

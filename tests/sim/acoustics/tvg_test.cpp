@@ -9,7 +9,7 @@
 using namespace sonarloop::acoustics;
 using Catch::Matchers::WithinAbs;
 
-TEST_CASE("tvg: the three laws of physics.md §3") {
+TEST_CASE("tvg: the three laws of docs/physics.md §3") {
   const double alpha = 0.0336;  // dB/m, 100 kHz
   CHECK_THAT(tvg_db(100.0, alpha, TvgLaw::kArea), WithinAbs(60.0 + 6.72, 1e-9));
   CHECK_THAT(tvg_db(100.0, alpha, TvgLaw::kPoint), WithinAbs(80.0 + 6.72, 1e-9));

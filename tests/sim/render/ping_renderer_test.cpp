@@ -87,7 +87,7 @@ TEST_CASE("render: a flat homogeneous seabed follows SL - 2TL + Sb + 10 log A + 
       const double sb = acoustics::apl_backscatter_db(grazing, sd.frequency_hz, sed);
       // the cell: a slant bin covers bin/cos(grazing) of ground; along track a line array's
       // beam spans r·φ at slant range r whatever the depression (the cone sin ψ = const), and a
-      // strip spans its width. (physics.md's cosine cancellation in A = (cτ/2)·φ·r holds for a
+      // strip spans its width. (docs/physics.md's cosine cancellation in A = (cτ/2)·φ·r holds for a
       // beam whose width φ is an azimuth in the horizontal plane, not for a line array.)
       const double along = model == AlongTrackModel::kStrip
                                ? setup.along_track_resolution_m

@@ -1,0 +1,64 @@
+#pragma once
+// What the autonomy agent makes of the onboard consumer's contacts (ours): each look's decision
+// margin, the fusion of several looks of one object, and the object's final state.
+//
+// Decision margin of one look. With d1 the distance of the identified class and d2 the runner-up's
+// (eq. 10 of Pailhas et al. 2010; atr/contact.h "distance", "runner_up_distance"):
+//     margin = (d2 - d1) / d1
+// the runner-up's gap relative to the distance itself (0: a tie; 0.05: the runner-up is 5 %
+// farther). Normalised so that one threshold serves chips of any contrast and models of any chip
+// size (the distances scale with sqrt(pixels)). With an open-set model (contact field
+// open_set_score s = distance / the class's reject distance) the margin is min((d2 - d1) / d1,
+// 1 - s): an object near its class's reject distance is uncertain however far its runner-up.
+// An unclassified contact (no class, or no runner-up) has margin 0.
+//
+// Fusion of looks (when the onboard consumer's fused fields are absent, and always for the fused
+// margin): each look's class distances are normalised by that look's mean over the classes,
+// n_c = d_c / mean_k(d_k), and summed over the looks: D_c = sum n_c. The fused class is argmin D_c,
+// the fused margin (D_2nd - D_1st) / D_1st. Mine / non-mine: the same sum over the looks'
+// normalised mine_distance and non_mine_distance when every look has both, else the mine-likeness
+// the onboard reported for the fused class. When the latest look carries the onboard's own fusion
+// (fields looks >= 2, fused_class, fused_mine_like: atr/look_fusion.h), its class and mine-likeness
+// are used, the margin still from the sum above.
+//
+// Final state of an object, for a margin threshold T:
+//   one look:    confirmed when margin >= T, else uncertain (a re-look is due)
+//   more looks:  confirmed when the fused margin >= T, or when the looks agree: at least two
+//                classified looks, and more than half of them, name the fused class as their
+//                own (independent aspects agree); else uncertain
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "atr/contact.h"
+
+namespace sonarloop::autonomy {
+
+// The contact of one JSON line of the onboard consumer (atr/contact.h). nullopt with `error`
+// on malformed input or a missing required field (contact, north_m, east_m).
+std::optional<atr::Contact> contact_from_json(std::string_view line, std::string& error);
+
+double decision_margin(const atr::Contact& c);
+
+struct FusedDecision {
+  std::string class_name;  // empty when no look was classified
+  bool mine_like = false;
+  double margin = 0.0;
+  int looks = 0;              // classified looks used
+  bool from_onboard = false;  // class and mine-likeness from the onboard's fused fields
+};
+
+FusedDecision fuse_looks(const std::vector<atr::Contact>& looks);
+
+enum class FinalState { kConfirmed, kUncertain };
+const char* to_string(FinalState s);
+
+struct ObjectDecision {
+  FinalState state = FinalState::kUncertain;
+  FusedDecision fused;
+};
+
+ObjectDecision decide(const std::vector<atr::Contact>& looks, double threshold);
+
+}  // namespace sonarloop::autonomy

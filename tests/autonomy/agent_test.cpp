@@ -1,0 +1,110 @@
+// The agent's brain without sockets: a survey, a synthetic uncertain contact reported when the
+// vehicle passes an object, a re-look flown at ~90° and the pass range, a second look that
+// confirms it, and the survey finished.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "autonomy/agent.h"
+
+using namespace sonarloop;
+using namespace sonarloop::autonomy;
+
+namespace {
+
+// A look at the object from wherever the vehicle is: classified "manta" with a small margin.
+atr::Contact contact_seen(std::uint64_t id, Point2 object, const VehicleState& s) {
+  atr::Contact c;
+  c.id = id;
+  c.north_m = object.north_m;
+  c.east_m = object.east_m;
+  const Point2 right = direction(s.heading_rad + 0.5 * std::numbers::pi);
+  const Point2 rel = object - s.position;
+  const double cross = rel.north_m * right.north_m + rel.east_m * right.east_m;
+  c.side = cross > 0 ? 1 : 0;
+  c.ground_range_m = std::fabs(cross);
+  c.class_name = "manta";
+  c.mine_like = true;
+  c.scores = {{"manta", 40.0}, {"rockan", 40.4}};
+  c.distance = 40.0;
+  c.runner_up = "rockan";
+  c.runner_up_distance = 40.4;
+  c.mine_distance = c.non_mine_distance = std::nan("");
+  return c;
+}
+
+// Along-track distance of the object ahead of the vehicle.
+double along(Point2 object, const VehicleState& s) {
+  const Point2 d = direction(s.heading_rad);
+  const Point2 rel = object - s.position;
+  return rel.north_m * d.north_m + rel.east_m * d.east_m;
+}
+
+}  // namespace
+
+TEST_CASE("an uncertain contact is re-looked from ~90 degrees and confirmed") {
+  AgentParams p;
+  p.margin_threshold = 0.05;  // the contacts' margin is 0.01: uncertain
+  const SurveyArea area{{-100, -60}, {100, 60}};
+  p.bounds = area;
+  VehicleState start;
+  start.position = {-100, -40};
+  start.depth_m = 15.0;
+  Agent agent(p, lawnmower(area, 40.0), start);
+  const Point2 object{0.0, -20.0};    // 20 m to starboard of the first line (east -40)
+  const double report_delay_s = 3.0;  // the onboard consumer's latency after the pass
+  std::uint64_t next_id = 1;
+  double due_s = -1.0;
+  int reported = 0;
+  double previous_along = along(object, agent.state());
+  while (!agent.mission_done() && agent.state().t_s < 4000) {
+    agent.step(0.5, 22.5);  // a flat seabed at 22.5 m: altitude 7.5 m at depth 15
+    const VehicleState& s = agent.state();
+    const double a = along(object, s);
+    const double range = distance_m(s.position, object);
+    // abeam within the swath: the onboard consumer will report it
+    if (previous_along > 0 && a <= 0 && range < 45.0 && reported < 2)
+      due_s = s.t_s + report_delay_s;
+    previous_along = a;
+    if (due_s > 0 && s.t_s >= due_s) {
+      agent.on_contact(contact_seen(next_id++, object, s));
+      ++reported;
+      due_s = -1.0;
+    }
+  }
+  CHECK(agent.mission_done());
+  CHECK(agent.state().depth_m == Approx(15.0).margin(0.01));
+  REQUIRE(agent.objects().size() == 1);
+  const AgentObject& o = agent.objects()[0];
+  CHECK(o.looks.size() >= 2);
+  CHECK(o.decision.state == FinalState::kConfirmed);
+  CHECK(o.decision.fused.class_name == "manta");
+  REQUIRE(agent.relooks().size() == 1);
+  const RelookRecord& r = agent.relooks()[0];
+  CHECK(r.passed);
+  CHECK(r.second_look);
+  CHECK(degrees(r.first_heading_rad) == Approx(0.0).margin(2.0));  // the first line goes north
+  CHECK(degrees(heading_difference_rad(r.pass_heading_rad, r.first_heading_rad)) ==
+        Approx(90.0).margin(5.0));
+  CHECK(r.pass_range_m == Approx(p.relook.pass_range_m).margin(1.0));
+  CHECK(r.inserted_t_s - r.look_t_s == Approx(report_delay_s).margin(1.0));
+  CHECK(agent.detour_distance_m() > p.relook.run_in_m);
+  CHECK(agent.detour_time_s() ==
+        Approx(agent.detour_distance_m() / p.vehicle.speed_m_s).epsilon(0.01));
+  // the survey still ends at the last line's end
+  CHECK(distance_m(agent.state().position, {100, 40}) < 10.0);
+}
+
+TEST_CASE("without re-looks the object keeps its uncertain first decision") {
+  AgentParams p;
+  p.relooks = false;
+  VehicleState start;
+  Agent agent(p, {Leg{{0, 0}, {100, 0}}}, start);
+  for (int i = 0; i < 20; ++i)
+    agent.step(1.0, std::nullopt);
+  agent.on_contact(contact_seen(1, {30.0, 20.0}, agent.state()));
+  CHECK(agent.relooks().empty());
+  REQUIRE(agent.objects().size() == 1);
+  CHECK(agent.objects()[0].decision.state == FinalState::kUncertain);
+  CHECK_FALSE(agent.take_events().empty());
+}

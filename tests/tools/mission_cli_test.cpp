@@ -1,0 +1,146 @@
+// The autonomy loop end to end, as a user runs it: a small model made with `sonarloop dataset`
+// and `sonarloop train`, then `sonarloop mission` on a two-target scenario (emulator, onboard
+// consumer and agent as three processes; pings over UDP, contacts over UDP, navigation over a
+// socketcand TCP connection, the pose over UDP, all on 127.0.0.1) in accelerated time. The
+// re-look threshold is so high that every contact is uncertain: each must be re-looked from about
+// 90 degrees at the pass range, and at least one object confirmed by its looks. Then Ctrl-C: the
+// mission stops its children and still writes its report.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <string>
+#include <thread>
+
+#include "autonomy/json_line.h"
+#include "tests/support/temp_dir.h"
+
+using namespace sonarloop;
+using sonarloop::autonomy::JsonLine;
+using sonarloop::testing::slurp;
+
+namespace {
+
+const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
+const std::string kScenario =
+    std::string(SONARLOOP_SOURCE_DIR) + "/tests/data/autonomy/two_targets.yaml";
+// The scenario's one survey line and its surroundings (see the scenario's header).
+const std::string kArea = "-40,-20,40,20";
+// Accelerated time: about 400 s of mission in under a minute and a half on 2 busy cores.
+const std::string kRate = "6";
+constexpr double kAspectToleranceDeg = 10.0;  // of the 90 degrees
+constexpr double kPassRange_m = 25.0;         // the agent's default
+constexpr double kPassRangeTolerance_m = 3.0;
+
+int run(const testing::TempDir& dir, const std::string& args, const std::string& log) {
+  return testing::run_command(kBinary + " " + args + " > " + dir.file(log + ".out") + " 2> " +
+                              dir.file(log + ".err"));
+}
+
+// A two-class model (the scenario's types), 150 chips each on flat sand: a few seconds.
+std::string train_model(const testing::TempDir& dir) {
+  REQUIRE(run(dir,
+              "dataset --out " + dir.file("chips") +
+                  " --count 150 --resolution-cm 5 --seed 1 --threads 2 --seabed flat --classes "
+                  "manta,cylinder",
+              "dataset") == 0);
+  const std::string model = dir.file("atr.slpca");
+  REQUIRE(run(dir, "train " + dir.file("chips") + " --out " + model + " --aspect-sectors 4 --p 10",
+              "train") == 0);
+  return model;
+}
+
+JsonLine parse_file(const std::string& path) {
+  std::string error;
+  const auto j = JsonLine::parse(slurp(path), error);
+  INFO(path << ": " << error);
+  REQUIRE(j);
+  return *j;
+}
+
+}  // namespace
+
+TEST_CASE("an uncertain contact is re-looked from ~90 degrees and confirmed, over loopback") {
+  testing::TempDir dir("mission_cli");
+  const std::string model = train_model(dir);
+  const std::string report = dir.file("mission.json");
+  const int rc = run(dir,
+                     "mission " + kScenario + " --model " + model + " --rate " + kRate +
+                         " --threshold 1e6 --area " + kArea + " --report " + report + " --out " +
+                         dir.file("logs") + " --quiet",
+                     "mission");
+  INFO(slurp(dir.file("mission.err")) << slurp(dir.file("logs/agent.log")));
+  REQUIRE(rc == 0);
+  const JsonLine m = parse_file(report);
+  const JsonLine agent = *m.object("agent");
+  CHECK(agent.boolean("mission_done") == true);
+  // navigation came over CAN (socketcand), with the seabed's depth for the altitude keeping
+  const JsonLine nav = *agent.object("nav");
+  CHECK(nav.number("frames").value_or(0) > 100);
+  CHECK(nav.number("depth_updates").value_or(0) > 10);
+  CHECK(agent.number("contacts_received").value_or(0) >= 2);
+  // both targets were seen
+  const JsonLine summary = *m.object("summary");
+  CHECK(summary.number("detected") == Approx(2));
+  // every re-look that was flown passed at ~90 degrees and the pass range, and saw it again
+  const auto relooks = agent.objects("relooks");
+  REQUIRE(!relooks.empty());
+  int passed = 0;
+  for (const JsonLine& r : relooks) {
+    if (!r.boolean("passed").value_or(false)) continue;
+    ++passed;
+    CHECK(r.number("aspect_change_deg").value_or(0) == Approx(90.0).margin(kAspectToleranceDeg));
+    CHECK(r.number("pass_range_m").value_or(0) ==
+          Approx(kPassRange_m).margin(kPassRangeTolerance_m));
+    CHECK(r.boolean("second_look") == true);
+    CHECK(r.number("latency_s").value_or(-1) > 0.0);
+  }
+  CHECK(passed >= 1);
+  // an object first uncertain (every one is, at this threshold), re-looked, confirmed
+  int confirmed_after_relook = 0;
+  for (const JsonLine& o : agent.objects("objects")) {
+    INFO("object " << o.number("object").value_or(0) << ": " << o.string("state").value_or("")
+                   << " " << o.string("class").value_or("-") << ", looks "
+                   << o.number("looks").value_or(0));
+    if (o.boolean("relooked") == true && o.string("state") == "confirmed" &&
+        o.number("looks").value_or(0) >= 2) {
+      ++confirmed_after_relook;
+    }
+  }
+  CHECK(confirmed_after_relook >= 1);
+}
+
+TEST_CASE("Ctrl-C stops the mission's three processes and still writes the report") {
+  testing::TempDir dir("mission_stop");
+  const std::string model = train_model(dir);
+  const std::string report = dir.file("mission.json");
+  const std::string log = dir.file("logs/agent.log");
+  const pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    std::freopen(dir.file("mission.err").c_str(), "w", stderr);
+    execl(kBinary.c_str(), kBinary.c_str(), "mission", kScenario.c_str(), "--model", model.c_str(),
+          "--rate", kRate.c_str(), "--area", kArea.c_str(), "--report", report.c_str(), "--out",
+          dir.file("logs").c_str(), "--quiet", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // once the agent flies (nav connected), interrupt
+  bool flying = false;
+  for (int k = 0; k < 1200 && !flying; ++k) {
+    flying = slurp(log).find("nav connected") != std::string::npos;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  kill(pid, SIGINT);
+  int status = 0;
+  REQUIRE(waitpid(pid, &status, 0) == pid);
+  INFO(slurp(dir.file("mission.err")));
+  CHECK(flying);
+  CHECK(WIFEXITED(status));
+  const JsonLine m = parse_file(report);
+  CHECK(m.object("run")->boolean("stopped") == true);
+  CHECK(m.object("agent")->boolean("stopped") == true);
+  CHECK(m.object("summary")->number("mission_time_s").value_or(0) > 0.0);
+}

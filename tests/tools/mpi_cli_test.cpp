@@ -1,0 +1,156 @@
+// End-to-end: `mpirun -np 2 sonarloop dataset|sweep` against the same command in one process.
+// The dataset's files must be byte-identical; the sweep's confusion files byte-identical and its
+// results identical but for the timing columns (which differ between any two runs). Both ranks
+// run on this machine (--oversubscribe; root allowed by Open MPI's environment variables). A
+// failure on rank 0 must end the job, not leave the other rank waiting. Skipped (exit 77) when
+// this build has no MPI support or mpirun is missing.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/support/temp_dir.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using sonarloop::testing::run_command;
+using sonarloop::testing::slurp;
+
+const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
+// a hung job fails the test instead of waiting for CTest's timeout; in a sanitizer build, Open
+// MPI's own allocations left at exit are not ours to report (our code's leaks show in the
+// one-process runs and tests/tools/chip_ranks_test.cpp)
+const std::string kMpirun =
+    "ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" OMPI_ALLOW_RUN_AS_ROOT=1 "
+    "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 300 mpirun -np 2 --oversubscribe ";
+
+void skip(const std::string& why) {
+  std::printf("SKIPPED: %s\n", why.c_str());
+  std::fflush(stdout);
+  std::exit(77);
+}
+
+void skip_without_mpi() {
+#ifndef SONARLOOP_HAVE_MPI
+  skip("sonarloop was built without MPI (SONARLOOP_MPI=OFF, or no libopenmpi-dev)");
+#endif
+  if (run_command("command -v mpirun > /dev/null 2>&1") != 0) {
+    skip("mpirun not found (Debian: openmpi-bin)");
+  }
+}
+
+int run_one(const std::string& args, const std::string& log) {
+  return run_command(kBinary + " " + args + " > '" + log + "' 2>&1");
+}
+
+int run_two(const std::string& args, const std::string& log) {
+  return run_command(kMpirun + kBinary + " " + args + " > '" + log + "' 2>&1");
+}
+
+// Every regular file below `root`, relative to it, with its bytes.
+std::map<std::string, std::string> tree(const fs::path& root) {
+  std::map<std::string, std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(root)) {
+    if (e.is_regular_file()) out[fs::relative(e.path(), root).generic_string()] = slurp(e.path());
+  }
+  return out;
+}
+
+// A sweep results CSV without its timing columns.
+std::string without_times(const std::string& csv) {
+  std::stringstream in(csv);
+  std::string line, out;
+  std::vector<bool> keep;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ls(line);
+    std::string cell;
+    while (std::getline(ls, cell, ','))
+      cells.push_back(cell);
+    if (keep.empty()) {
+      for (const auto& c : cells)
+        keep.push_back(c != "render_ms_per_chip" && c != "train_s" && c != "classify_ms_per_chip");
+    }
+    REQUIRE(cells.size() == keep.size());
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      if (keep[i]) out += cells[i] + ",";
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("mpi: a dataset on 2 ranks is byte-identical to one process", "[mpi_cli]") {
+  skip_without_mpi();
+  const sonarloop::testing::TempDir dir("mpi_cli_dataset");
+  const std::string log = dir.file("log.txt");
+  // 7 chips x 3 classes x 2 resolutions: an odd number of jobs, unequal shares
+  const std::string common =
+      "dataset --count 7 --classes manta,rockan,cylinder --resolution-cm 10 --resolution-cm 20 "
+      "--seabed flat,clutter --seed 4 --threads 1 --out ";
+  REQUIRE(run_one(common + dir.file("one"), log) == 0);
+  const int rc = run_two(common + dir.file("two"), log);
+  INFO(slurp(log));
+  REQUIRE(rc == 0);
+  CHECK(slurp(log).find("on 2 ranks") != std::string::npos);  // really one job of two ranks
+  const auto one = tree(dir.path() / "one");
+  const auto two = tree(dir.path() / "two");
+  // labels.csv lists every chip of each resolution, after its header line
+  REQUIRE(one.count("labels.csv") == 1);
+  CHECK(std::count(one.at("labels.csv").begin(), one.at("labels.csv").end(), '\n') == 1 + 2 * 21);
+  REQUIRE(one.size() == two.size());
+  for (const auto& [name, bytes] : one) {
+    INFO(name);
+    REQUIRE(two.count(name) == 1);
+    CHECK(two.at(name) == bytes);
+  }
+}
+
+TEST_CASE("mpi: a sweep on 2 ranks scores the same as one process", "[mpi_cli]") {
+  skip_without_mpi();
+  const sonarloop::testing::TempDir dir("mpi_cli_sweep");
+  const std::string log = dir.file("log.txt");
+  // fig11 (training then test chips per resolution) and fusion (four chip sets per resolution)
+  const std::string common =
+      "sweep --experiment fig11 --experiment fusion --resolutions-cm 10,20 --train-count 6 "
+      "--test-count 5 --p 4 --no-plot --seed 3 --threads 1 --out ";
+  REQUIRE(run_one(common + dir.file("one"), log) == 0);
+  const int rc = run_two(common + dir.file("two"), log);
+  INFO(slurp(log));
+  REQUIRE(rc == 0);
+  CHECK(slurp(log).find("on 2 ranks") != std::string::npos);
+  for (const std::string e : {"fig11", "fusion"}) {
+    INFO(e);
+    const std::string conf = slurp(dir.file("one/" + e + "_confusion.csv"));
+    REQUIRE(!conf.empty());
+    CHECK(slurp(dir.file("two/" + e + "_confusion.csv")) == conf);
+    const std::string res = slurp(dir.file("one/" + e + ".csv"));
+    REQUIRE(!res.empty());
+    CHECK(without_times(slurp(dir.file("two/" + e + ".csv"))) == without_times(res));
+  }
+}
+
+TEST_CASE("mpi: a failure on rank 0 ends the whole job", "[mpi_cli]") {
+  skip_without_mpi();
+  const sonarloop::testing::TempDir dir("mpi_cli_fail");
+  const std::string log = dir.file("log.txt");
+  // rank 0 refuses a non-empty --out after rank 1 has started waiting for chips to render
+  fs::create_directories(dir.path() / "full");
+  std::FILE* f = std::fopen(dir.file("full/x").c_str(), "w");
+  REQUIRE(f);
+  std::fclose(f);
+  const int rc = run_two("dataset --count 2 --threads 1 --out " + dir.file("full"), log);
+  INFO(slurp(log));
+  CHECK(rc != 0);
+  CHECK(rc != 124);  // not ended by the timeout: the job ended itself
+  CHECK(slurp(log).find("not empty") != std::string::npos);
+}

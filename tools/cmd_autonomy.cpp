@@ -1,0 +1,305 @@
+// sonarloop autonomy: the example autonomy agent (autonomy/agent.h) in the loop — contacts from the
+// onboard consumer over UDP, navigation from CAN, its pose to the emulator over UDP.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "autonomy/agent.h"
+#include "autonomy/survey.h"
+#include "tools/args.h"
+#include "tools/autonomy_io.h"
+#include "tools/cli_helpers.h"
+#include "tools/commands.h"
+#include "tools/output_file.h"
+#include "tools/scenario_source.h"
+
+namespace sonarloop::tools {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// How long to wait for the emulator's socketcand server (it opens after building the scene).
+constexpr double kConnectTimeoutS = 120.0;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::int64_t unix_now_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_REALTIME, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+net::HostPort udp_option(const Args& args, const std::string& name) {
+  const auto v = args.get(name);
+  if (!v) throw UsageError(name + " udp:HOST:PORT is required");
+  if (v->rfind("udp:", 0) != 0)
+    throw UsageError(name + ": expected udp:HOST:PORT, got '" + *v + "'");
+  try {
+    return net::parse_host_port(v->substr(4));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(name + ": " + e.what());
+  }
+}
+
+// --area N0,E0,N1,E1: south-west and north-east corners.
+std::optional<autonomy::SurveyArea> area_option(const Args& args) {
+  const auto v = args.get("--area");
+  if (!v) return std::nullopt;
+  const std::vector<std::string> parts = split_comma_list(*v);
+  double x[4];
+  bool ok = parts.size() == 4;
+  for (std::size_t i = 0; ok && i < 4; ++i) {
+    char* end = nullptr;
+    x[i] = std::strtod(parts[i].c_str(), &end);
+    ok = *end == '\0' && std::isfinite(x[i]);
+  }
+  if (!ok || !(x[2] > x[0]) || !(x[3] > x[1])) {
+    throw UsageError("--area: expected N0,E0,N1,E1 in metres with N1 > N0 and E1 > E0, got '" + *v +
+                     "'");
+  }
+  return autonomy::SurveyArea{{x[0], x[1]}, {x[2], x[3]}};
+}
+
+struct Setup {
+  autonomy::AgentParams params;
+  autonomy::SurveyArea area;
+  GeoPoint origin;
+  double start_depth_m = 0.0;
+};
+
+// The area, origin, speed and altitude of the scenario (or the options that replace them).
+Setup setup_from(const Args& args) {
+  const config::Scenario sc = load_scenario_or_default(args.get("--scenario"));
+  Setup s;
+  s.origin = GeoPoint{sc.scene.origin.latitude_deg, sc.scene.origin.longitude_deg};
+  const double margin = args.get_double("--area-margin", 0.0, 1e4).value_or(50.0);
+  const auto& sb = sc.scene.seabed;
+  s.area = area_option(args).value_or(autonomy::SurveyArea{
+      {sb.origin_m.x() + margin, sb.origin_m.y() + margin},
+      {sb.origin_m.x() + sb.extent_m.x() - margin, sb.origin_m.y() + sb.extent_m.y() - margin}});
+  if (!(s.area.max.north_m > s.area.min.north_m) || !(s.area.max.east_m > s.area.min.east_m)) {
+    throw UsageError("--area-margin leaves no area of the scenario's seabed to survey");
+  }
+  const auto& tr = sc.vehicle.trajectory;
+  autonomy::AgentParams& p = s.params;
+  p.vehicle.speed_m_s = args.get_double("--speed", 0.1, 20.0).value_or(tr.speed_m_s);
+  p.vehicle.max_turn_rate_rad_s = tr.max_turn_rate_rad_s;
+  p.vehicle.max_vertical_rate_m_s = tr.depth.max_climb_rate_m_s;
+  p.target_altitude_m = args.get_double("--altitude", 1.0, 100.0).value_or(tr.depth.altitude_m);
+  p.relook.turn_radius_m = p.vehicle.turn_radius_m();
+  p.relook.pass_range_m =
+      args.get_double("--pass-range", 1.0, 1000.0).value_or(p.relook.pass_range_m);
+  p.margin_threshold = args.get_double("--threshold", 0.0, 1e9).value_or(p.margin_threshold);
+  p.relooks = !args.has("--no-relook");
+  p.max_relooks =
+      static_cast<int>(args.get_int("--max-relooks", 0, 1 << 30).value_or(p.max_relooks));
+  // re-looks may use the seabed's whole extent
+  p.bounds =
+      autonomy::SurveyArea{{sb.origin_m.x(), sb.origin_m.y()},
+                           {sb.origin_m.x() + sb.extent_m.x(), sb.origin_m.y() + sb.extent_m.y()}};
+  s.start_depth_m = std::max(0.0, sc.scene.water.depth_m - p.target_altitude_m);
+  return s;
+}
+
+void print_events(autonomy::Agent& agent, bool quiet) {
+  for (const std::string& e : agent.take_events()) {
+    if (!quiet) std::fprintf(stderr, "autonomy: t=%.1f s: %s\n", agent.state().t_s, e.c_str());
+  }
+}
+
+int run_autonomy(const std::vector<std::string>& argv) {
+  const Args args(argv, {{"--scenario"},
+                         {"--contacts"},
+                         {"--nav"},
+                         {"--pose-to"},
+                         {"--rate"},
+                         {"--threshold"},
+                         {"--no-relook", false},
+                         {"--max-relooks"},
+                         {"--pass-range"},
+                         {"--line-spacing"},
+                         {"--area"},
+                         {"--area-margin"},
+                         {"--altitude"},
+                         {"--speed"},
+                         {"--pose-hz"},
+                         {"--drain"},
+                         {"--max-duration"},
+                         {"--report"},
+                         {"--quiet", false}});
+  if (!args.positionals().empty()) {
+    throw UsageError("unexpected argument '" + args.positionals()[0] + "'");
+  }
+  const bool quiet = args.has("--quiet");
+  const net::HostPort contacts_at = udp_option(args, "--contacts");
+  const net::HostPort pose_to = udp_option(args, "--pose-to");
+  const auto nav_spec = args.get("--nav");
+  if (!nav_spec)
+    throw UsageError("--nav socketcand:HOST:PORT (or a SocketCAN interface) is required");
+  const double rate = args.get_double("--rate", 0.01, 1000.0).value_or(1.0);
+  const double pose_hz = args.get_double("--pose-hz", 1.0, 1000.0).value_or(20.0);
+  const double drain_s = args.get_double("--drain", 0.0, 3600.0).value_or(20.0);
+  const double max_duration_s = args.get_double("--max-duration", 1.0, 1e7).value_or(1e7);
+  const double spacing_m = args.get_double("--line-spacing", 1.0, 1e4).value_or(40.0);
+  std::optional<OutputFile> report;
+  if (const auto r = args.get("--report")) report.emplace("--report", *r);
+
+  Setup setup = setup_from(args);
+  const std::vector<autonomy::Leg> survey = autonomy::lawnmower(setup.area, spacing_m);
+  autonomy::VehicleState start;
+  start.position = survey.front().start;
+  start.heading_rad = survey.front().heading_rad();
+  start.depth_m = setup.start_depth_m;
+  autonomy::Agent agent(setup.params, survey, start);
+  const LocalTangentPlane ltp(setup.origin);
+  AgentRunInfo info;
+  info.rate = rate;
+  info.threshold = setup.params.margin_threshold;
+  info.relooks = setup.params.relooks;
+  info.survey_plan_m = autonomy::plan_length_m(survey);
+
+  install_stop_flag();
+  ContactListener contacts(contacts_at);
+  PosePublisher pose(pose_to, ltp);
+  if (!quiet) {
+    std::fprintf(stderr,
+                 "autonomy: survey of (%.0f, %.0f)-(%.0f, %.0f) m, %zu lines %.0f m apart (%.0f "
+                 "m), re-looks %s (margin threshold %.3g, pass range %.0f m), rate %g\n",
+                 setup.area.min.north_m, setup.area.min.east_m, setup.area.max.north_m,
+                 setup.area.max.east_m, survey.size(), spacing_m, info.survey_plan_m,
+                 info.relooks ? "on" : "off", info.threshold, setup.params.relook.pass_range_m,
+                 rate);
+    std::fprintf(stderr, "autonomy: contacts on %s, pose to udp %s, nav from %s ...\n",
+                 contacts.describe().c_str(), net::to_string(pose_to).c_str(), nav_spec->c_str());
+  }
+  // the pose first (the emulator waits for it), then the bus (its server may still be starting)
+  pose.publish(agent.state(), unix_now_ns());
+  NavListener nav(*nav_spec, ltp, kConnectTimeoutS);
+  if (!quiet) std::fprintf(stderr, "autonomy: nav connected (%s)\n", nav.describe().c_str());
+
+  const auto wall0 = Clock::now();
+  const auto period =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / pose_hz));
+  auto next = wall0;
+  double offset_sum = 0.0;
+  std::uint64_t offset_n = 0, last_position_updates = 0;
+  double done_at_s = -1.0;  // mission time the survey ended, < 0 while flying
+  while (!stop_requested()) {
+    next += period;
+    std::this_thread::sleep_until(next);
+    // the model runs at the emulator's rate: mission time = rate x wall time
+    const double target_s = rate * seconds_since(wall0);
+    const NavFix fix = nav.latest();
+    agent.step(target_s - agent.state().t_s, fix.seabed_depth_m);
+    for (const atr::Contact& c : contacts.take())
+      agent.on_contact(c);
+    pose.publish(agent.state(), unix_now_ns());
+    if (fix.position && fix.position_updates != last_position_updates) {
+      last_position_updates = fix.position_updates;
+      const double off = autonomy::distance_m(*fix.position, agent.state().position);
+      offset_sum += off;
+      ++offset_n;
+      info.nav_offset_max_m = std::max(info.nav_offset_max_m, off);
+    }
+    print_events(agent, quiet);
+    // done: wait `drain_s` of mission time for the last contacts (which may ask for re-looks)
+    if (agent.mission_done()) {
+      if (done_at_s < 0) {
+        done_at_s = agent.state().t_s;
+        if (!quiet)
+          std::fprintf(stderr, "autonomy: survey done, waiting %.0f s for contacts\n", drain_s);
+      }
+      if (agent.state().t_s - done_at_s >= drain_s) break;
+    } else {
+      done_at_s = -1.0;
+    }
+    if (agent.state().t_s >= max_duration_s) break;
+  }
+  info.stopped = stop_requested();
+  info.wall_time_s = seconds_since(wall0);
+  info.contacts_received = contacts.received();
+  info.contacts_malformed = contacts.malformed();
+  info.poses_sent = pose.sent();
+  info.nav = nav.latest();
+  info.nav_offset_mean_m = offset_n ? offset_sum / static_cast<double>(offset_n) : 0.0;
+  int confirmed = 0;
+  for (const auto& o : agent.objects())
+    confirmed += o.decision.state == autonomy::FinalState::kConfirmed;
+  std::fprintf(stderr,
+               "autonomy: %s after %.0f s of mission (%.1f s wall): %.0f m flown, %.0f m and "
+               "%.0f s on %zu re-looks; %zu objects, %d confirmed; %llu contacts, %llu nav "
+               "frames\n",
+               info.stopped ? "stopped" : "done", agent.state().t_s, info.wall_time_s,
+               agent.travelled_m(), agent.detour_distance_m(), agent.detour_time_s(),
+               agent.relooks().size(), agent.objects().size(), confirmed,
+               static_cast<unsigned long long>(info.contacts_received),
+               static_cast<unsigned long long>(info.nav.frames));
+  if (report) report->write_and_close(agent_report_json(agent, info) + "\n");
+  return 0;
+}
+
+}  // namespace
+
+const Command kAutonomyCommand{
+    "autonomy", "the example autonomy agent: survey, re-look uncertain contacts, decide",
+    R"(usage: sonarloop autonomy --contacts udp:HOST:PORT --nav SPEC --pose-to udp:HOST:PORT [options]
+
+An example vehicle brain in the loop with the emulator (docs/autonomy.md). It flies a lawnmower
+survey with a simple vehicle model (speed, bounded turn rate, altitude keeping) and publishes
+its pose to the emulator (`run --pose-from udp:...`, emulator/pose_message.md) so that the
+pings come from where it steers. It reads the onboard consumer's contacts (`onboard --contacts
+udp:...`: one JSON line per datagram, atr/contact.h) and the navigation from CAN (NMEA 2000;
+the seabed's depth from PGN 128267 closes the altitude keeping). Each contact whose decision
+margin (runner-up distance - distance, over the distance; or 1 - the open-set score) is below
+--threshold gets a re-look: a straight pass about 90 degrees from the first look, the contact
+abeam at --pass-range, inserted at once; the survey then resumes where it was cut. Looks of an
+object are fused (the onboard's fused fields, or a sum of normalised distances) and every object
+ends confirmed (class, mine / non-mine, looks) or uncertain. The model runs at --rate times real
+time, as the emulator must. Ends when the survey is done and --drain seconds passed, or on
+Ctrl-C (the report is still written).
+
+options:
+  --contacts udp:HOST:PORT  listen for the contacts there (port 0: any free port)
+  --nav SPEC             socketcand:HOST:PORT[:CHANNEL] (the emulator's `--can socketcand:`
+                         server; retried for 120 s while it starts) or a SocketCAN interface
+  --pose-to udp:HOST:PORT  where the emulator listens (`run --pose-from udp:HOST:PORT`)
+  --scenario FILE        the scenario flown (default: the embedded default): its origin, its
+                         seabed's extent (the survey area, less --area-margin), the vehicle's
+                         speed, turn rate, climb rate and altitude
+  --area N0,E0,N1,E1     survey this rectangle instead (metres, scenario frame)
+  --area-margin M        inset of the seabed's extent for the survey area (default 50)
+  --line-spacing M       lawnmower line spacing (default 40: for the 50 m strip sonar, the
+                         range less the nadir gap)
+  --threshold T          decision margin below which a contact is re-looked (default 0.05)
+  --no-relook            survey only: objects keep their first decision
+  --max-relooks N        the mission's re-look budget: the first N uncertain objects only
+  --pass-range M         ground range of the contact on the re-look pass (default 25)
+  --altitude M           altitude kept above the seabed (default: the scenario's)
+  --speed M_S            vehicle speed (default: the scenario's)
+  --rate X               the emulator's --rate factor (default 1)
+  --pose-hz F            pose messages per wall second (default 20)
+  --drain S              mission seconds to wait for contacts after the survey (default 20)
+  --max-duration S       stop after S mission seconds
+  --report FILE          the JSON report: objects, re-looks (geometry, latency), distances
+  --quiet                no progress lines (the summary still prints)
+
+examples:
+  sonarloop onboard --listen 127.0.0.1:5600 --model out/atr.slpca --scenario config/mission_20.yaml \
+      --contacts udp:127.0.0.1:5610 &
+  sonarloop run config/mission_20.yaml --udp 127.0.0.1:5600 --can socketcand:127.0.0.1:29536 \
+      --pose-from udp:127.0.0.1:5700 --rate 5 &
+  sonarloop autonomy --scenario config/mission_20.yaml --contacts udp:127.0.0.1:5610 \
+      --nav socketcand:127.0.0.1:29536 --pose-to udp:127.0.0.1:5700 --rate 5 --report out/agent.json
+  (or all three at once: sonarloop mission config/mission_20.yaml --model out/atr.slpca)
+)",
+    run_autonomy, 18};
+SONARLOOP_REGISTER_COMMAND(kAutonomyCommand);
+
+}  // namespace sonarloop::tools

@@ -1,0 +1,307 @@
+// sonarloop mission: the whole autonomy loop for a scenario — the emulator (`run`), the onboard
+// consumer (`onboard`) and the agent (`autonomy`) as three child processes of this binary on
+// loopback, then a summary and a JSON report (tools/mission_report.h).
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "drivers/json/json_writer.h"
+#include "drivers/net/unique_fd.h"
+#include "tools/args.h"
+#include "tools/cli_helpers.h"
+#include "tools/commands.h"
+#include "tools/mission_report.h"
+#include "tools/output_file.h"
+#include "tools/scenario_source.h"
+
+namespace sonarloop::tools {
+namespace {
+
+// After the agent ends, how long the emulator and the onboard consumer get to stop on SIGINT.
+constexpr double kStopGraceS = 15.0;
+constexpr auto kPoll = std::chrono::milliseconds(100);
+
+// A free port on 127.0.0.1 for `type` (SOCK_DGRAM, SOCK_STREAM): bound to port 0 and released
+// (a small window in which another program could take it).
+int free_port(int type) {
+  net::UniqueFd fd(::socket(AF_INET, type, 0));
+  if (!fd.valid()) throw std::runtime_error("socket: " + net::errno_text(errno));
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t len = sizeof a;
+  if (::bind(fd.get(), reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 ||
+      ::getsockname(fd.get(), reinterpret_cast<sockaddr*>(&a), &len) != 0) {
+    throw std::runtime_error("cannot find a free port: " + net::errno_text(errno));
+  }
+  return ntohs(a.sin_port);
+}
+
+struct Child {
+  std::string name;
+  pid_t pid = -1;
+  int status = -1;  // exit status once ended
+  bool running() const { return pid > 0 && status < 0; }
+};
+
+// Starts this binary with `args`, stdout and stderr to `log`, in its own process group (so a
+// terminal's Ctrl-C reaches only the mission, which forwards it once).
+Child spawn(const std::string& name, const std::vector<std::string>& args, const std::string& log) {
+  std::vector<char*> argv;
+  std::string self = "/proc/self/exe";
+  argv.push_back(self.data());
+  std::vector<std::string> copy = args;
+  for (auto& a : copy)
+    argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error("fork: " + net::errno_text(errno));
+  if (pid == 0) {
+    ::setpgid(0, 0);
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      ::dup2(fd, 1);
+      ::dup2(fd, 2);
+      ::close(fd);
+    }
+    ::execv("/proc/self/exe", argv.data());
+    _exit(127);
+  }
+  return Child{name, pid, -1};
+}
+
+void reap(Child& c) {
+  if (!c.running()) return;
+  int st = 0;
+  if (::waitpid(c.pid, &st, WNOHANG) == c.pid) c.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+}
+
+// SIGINT, then up to grace_s for it to end, then SIGKILL.
+void stop(Child& c, double grace_s) {
+  if (!c.running()) return;
+  ::kill(c.pid, SIGINT);
+  const auto until = std::chrono::steady_clock::now() +
+                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                         std::chrono::duration<double>(grace_s));
+  while (c.running() && std::chrono::steady_clock::now() < until) {
+    std::this_thread::sleep_for(kPoll);
+    reap(c);
+  }
+  if (c.running()) {
+    std::fprintf(stderr, "mission: %s did not stop in %.0f s: killed\n", c.name.c_str(), grace_s);
+    ::kill(c.pid, SIGKILL);
+    int st = 0;
+    ::waitpid(c.pid, &st, 0);
+    c.status = 137;
+  }
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string loopback(int port) {
+  return "127.0.0.1:" + std::to_string(port);
+}
+
+int run_mission(const std::vector<std::string>& argv) {
+  const Args args(argv, {{"--model"},
+                         {"--rate"},
+                         {"--threshold"},
+                         {"--no-relook", false},
+                         {"--report"},
+                         {"--out"},
+                         {"--line-spacing"},
+                         {"--pass-range"},
+                         {"--area"},
+                         {"--area-margin"},
+                         {"--max-relooks"},
+                         {"--max-duration"},
+                         {"--quiet", false}});
+  if (args.positionals().size() > 1) throw UsageError("expected at most one SCENARIO.yaml");
+  const auto model = args.get("--model");
+  if (!model) throw UsageError("--model MODEL is required (a model of `sonarloop train`)");
+  if (!std::filesystem::exists(*model)) throw UsageError("--model " + *model + ": no such file");
+  const std::optional<std::string> scenario_path =
+      args.positionals().empty() ? std::nullopt : std::optional(args.positionals()[0]);
+  const config::Scenario scenario = load_scenario_or_default(scenario_path);
+  const std::string rate = args.get_or("--rate", "10");
+  args.get_double("--rate", 0.01, 1000.0);  // validated here, used by the children
+  const std::string report_path = args.get_or("--report", "out/mission.json");
+  const std::string out_dir = args.get_or(
+      "--out", (std::filesystem::path(report_path).parent_path() / "mission_logs").string());
+  std::filesystem::create_directories(out_dir);
+  OutputFile report("--report", report_path);  // opened now: fails before the run
+  const bool quiet = args.has("--quiet");
+
+  const int sonar_port = free_port(SOCK_DGRAM), contacts_port = free_port(SOCK_DGRAM);
+  const int pose_port = free_port(SOCK_DGRAM), can_port = free_port(SOCK_STREAM);
+  const auto log = [&](const char* name) {
+    return (std::filesystem::path(out_dir) / name).string();
+  };
+  std::vector<std::string> scenario_args;
+  if (scenario_path) scenario_args = {"--scenario", *scenario_path};
+
+  std::vector<std::string> onboard = {"onboard",
+                                      "--listen",
+                                      loopback(sonar_port),
+                                      "--model",
+                                      *model,
+                                      "--contacts",
+                                      "udp:" + loopback(contacts_port),
+                                      "--stats-json",
+                                      log("onboard_stats.json")};
+  onboard.insert(onboard.end(), scenario_args.begin(), scenario_args.end());
+  std::vector<std::string> emulator = {"run"};
+  if (scenario_path) emulator.push_back(*scenario_path);
+  for (const std::string& a :
+       {std::string("--udp"), loopback(sonar_port), std::string("--can"),
+        "socketcand:" + loopback(can_port), std::string("--pose-from"),
+        "udp:" + loopback(pose_port), std::string("--rate"), rate, std::string("--stats-every"),
+        std::string("10"), std::string("--stats-json"), log("emulator_stats.json")})
+    emulator.push_back(a);
+  std::vector<std::string> agent = {"autonomy",
+                                    "--contacts",
+                                    "udp:" + loopback(contacts_port),
+                                    "--nav",
+                                    "socketcand:" + loopback(can_port),
+                                    "--pose-to",
+                                    "udp:" + loopback(pose_port),
+                                    "--rate",
+                                    rate,
+                                    "--report",
+                                    log("agent.json")};
+  agent.insert(agent.end(), scenario_args.begin(), scenario_args.end());
+  for (const char* o : {"--threshold", "--line-spacing", "--pass-range", "--max-duration", "--area",
+                        "--area-margin", "--max-relooks"}) {
+    if (const auto v = args.get(o)) {
+      agent.push_back(o);
+      agent.push_back(*v);
+    }
+  }
+  if (args.has("--no-relook")) agent.push_back("--no-relook");
+
+  install_stop_flag();
+  std::fprintf(stderr,
+               "mission: scenario '%s', rate %s, re-looks %s; logs in %s (onboard.log, "
+               "emulator.log, agent.log)\n",
+               scenario.scene.name.c_str(), rate.c_str(), args.has("--no-relook") ? "off" : "on",
+               out_dir.c_str());
+  std::vector<Child> children;
+  children.push_back(spawn("onboard", onboard, log("onboard.log")));
+  children.push_back(spawn("emulator", emulator, log("emulator.log")));
+  children.push_back(spawn("agent", agent, log("agent.log")));
+  Child& agent_child = children[2];
+  const auto t0 = std::chrono::steady_clock::now();
+  auto next_progress = t0 + std::chrono::seconds(10);
+  bool forwarded = false;
+  std::string failure;
+  for (;;) {
+    std::this_thread::sleep_for(kPoll);
+    for (Child& c : children)
+      reap(c);
+    if (!agent_child.running()) break;
+    for (const Child& c : children) {
+      if (&c != &agent_child && !c.running() && failure.empty()) {
+        failure = c.name + " ended early (status " + std::to_string(c.status) + ", see " +
+                  log((c.name + ".log").c_str()) + ")";
+      }
+    }
+    if (!failure.empty() && !forwarded) {
+      std::fprintf(stderr, "mission: %s: stopping\n", failure.c_str());
+      ::kill(agent_child.pid, SIGINT);
+      forwarded = true;
+    }
+    if (stop_requested() && !forwarded) {
+      std::fprintf(stderr, "mission: stop requested: stopping the agent, then the others\n");
+      ::kill(agent_child.pid, SIGINT);
+      forwarded = true;
+    }
+    if (!quiet && std::chrono::steady_clock::now() >= next_progress) {
+      next_progress += std::chrono::seconds(10);
+      std::fprintf(stderr, "mission: %.0f s wall ...\n",
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+  }
+  for (Child& c : children)
+    stop(c, kStopGraceS);
+  const std::string agent_report = read_file(log("agent.json"));
+  if (agent_report.empty()) {
+    std::fprintf(stderr, "mission: the agent wrote no report (status %d, see %s)\n",
+                 agent_child.status, log("agent.log").c_str());
+    report.write_and_close("{\"error\": \"the agent wrote no report\"}\n");
+    return 1;
+  }
+  json::Writer settings;
+  settings.begin_object();
+  settings.field("scenario", scenario.scene.name).field("rate", rate);
+  settings.field("relooks", !args.has("--no-relook"));
+  settings.field("model", *model).field("stopped", stop_requested() || !failure.empty());
+  settings.field("failure", failure);
+  settings.end_object();
+  MissionSummary s;
+  report.write_and_close(
+      mission_report_json(agent_report, scenario, "\"run\": " + settings.str(), &s));
+  print_mission_summary(s);
+  std::fprintf(stderr, "mission: report %s\n", report_path.c_str());
+  return failure.empty() ? 0 : 1;
+}
+
+}  // namespace
+
+const Command kMissionCommand{
+    "mission", "the autonomy loop for a scenario: emulator + onboard + agent, with a report",
+    R"(usage: sonarloop mission [SCENARIO.yaml] --model MODEL [options]
+
+Runs the whole loop of docs/autonomy.md on 127.0.0.1 (free ports), as three child processes of
+this binary: the emulator (`run SCENARIO --pose-from udp:.. --udp .. --can socketcand:..`), the
+onboard consumer (`onboard --listen .. --model MODEL --contacts udp:..`) and the example agent
+(`autonomy`), which flies the survey and re-looks uncertain contacts. When the agent ends (the
+survey and its re-looks done), the others are stopped; the agent's objects are matched against
+the scenario's targets (within 3 m) and the summary printed and written as JSON: targets
+detected, identified, mine / non-mine right, false contacts, re-looks (aspect change, pass
+range, extra distance and time, latency from the ping abeam the object to the new waypoint).
+Ctrl-C (or SIGTERM) stops the agent, then the others, and still writes the report. Each child's
+output goes to DIR/NAME.log. In accelerated time the loop's latencies (UDP, the emulator's
+0.1 s pose delay) grow in mission time by the rate: docs/autonomy.md.
+
+options:
+  --model MODEL          the onboard consumer's model (`sonarloop train`), required
+  --rate X               accelerated time for all three (default 10)
+  --threshold T          the agent's re-look margin threshold (default 0.05)
+  --no-relook            survey only (the baseline of the table)
+  --max-relooks N        the agent's re-look budget (default: no limit)
+  --line-spacing M       lawnmower line spacing (default 40)
+  --pass-range M         re-look pass range (default 25)
+  --area N0,E0,N1,E1     the survey rectangle (default: the seabed less --area-margin)
+  --area-margin M        (default 50)
+  --max-duration S       stop the agent after S mission seconds
+  --report FILE          the JSON report (default out/mission.json)
+  --out DIR              the children's logs and reports (default: FILE's folder/mission_logs)
+  --quiet                no progress lines
+
+examples:
+  sonarloop dataset --out out/chips7 --count 300 --classes manta,rockan,cylinder,large_cuboid,hemisphere,small_hemisphere,box
+  sonarloop train out/chips7 --out out/atr7.slpca --aspect-sectors 8 --p 10
+  sonarloop mission config/mission_20.yaml --model out/atr7.slpca --rate 10 --report out/mission.json
+  sonarloop mission config/mission_20.yaml --model out/atr7.slpca --no-relook --report out/base.json
+)",
+    run_mission, 19};
+SONARLOOP_REGISTER_COMMAND(kMissionCommand);
+
+}  // namespace sonarloop::tools

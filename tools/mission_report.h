@@ -1,0 +1,41 @@
+#pragma once
+// `sonarloop mission`'s report: the agent's objects (its --report) matched against the scenario's
+// targets, and the numbers of docs/autonomy.md's table.
+//
+// Matching: each target is matched to the nearest object within kTargetMatchRadius_m of it (an
+// object matches one target at most); an object matched to no target is a false contact.
+//   detected              targets with an object
+//   identified            of those, the object's final class is the target's type
+//   mine_correct          of those, the object's mine / non-mine decision is the target's
+//   confirmed(_correct)   objects confirmed (and identified right) at the end
+//   latency               per re-look, mission seconds from the ping abeam the object (the
+//                         vehicle's track sample where its first look was abeam) to the re-look
+//                         leg's insertion (the new waypoint); wall seconds = that / rate
+#include <string>
+
+#include "config/loader/scenario_loader.h"
+
+namespace sonarloop::tools {
+
+inline constexpr double kTargetMatchRadius_m = 3.0;
+
+struct MissionSummary {
+  int targets = 0, detected = 0, identified = 0, mine_correct = 0;
+  int objects = 0, confirmed = 0, confirmed_correct = 0, false_contacts = 0;
+  int relooks = 0, relooks_passed = 0, relooks_second_look = 0;
+  double mission_time_s = 0.0, wall_time_s = 0.0, distance_m = 0.0;
+  double relook_distance_m = 0.0, relook_time_s = 0.0;
+  double latency_mean_s = 0.0, latency_max_s = 0.0;
+  double aspect_change_mean_deg = 0.0, pass_range_mean_m = 0.0;
+  bool mission_done = false;
+};
+
+// The mission report (JSON) from the agent's report text; *summary gets the totals. Throws
+// std::runtime_error when the agent's report does not parse.
+std::string mission_report_json(const std::string& agent_report, const config::Scenario& scenario,
+                                const std::string& extra_fields_json, MissionSummary* summary);
+
+// A few lines for the console.
+void print_mission_summary(const MissionSummary& s);
+
+}  // namespace sonarloop::tools

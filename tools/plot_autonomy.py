@@ -1,0 +1,98 @@
+#!/usr/bin/python3
+"""Charts and tables of `sonarloop mission` reports (docs/autonomy.md).
+
+usage: tools/plot_autonomy.py --out docs/autonomy REPORT.json[=LABEL] ...
+
+Prints the with/without table (Markdown) of the reports and writes OUT/accuracy_vs_time.png:
+the fraction of targets identified, confirmed right and called mine / non-mine right against
+the mission's duration, one point per report (e.g. one per re-look threshold, and the survey
+without re-looks).
+"""
+import argparse
+import json
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def load(spec):
+    path, _, label = spec.partition("=")
+    with open(path) as f:
+        report = json.load(f)
+    if not label:
+        run = report.get("run", {})
+        label = "no re-looks" if not run.get("relooks", True) else (
+            "threshold %g" % report["agent"]["threshold"])
+    return label, report
+
+
+def pct(n, d):
+    return "%d / %d (%.0f %%)" % (n, d, 100.0 * n / d) if d else "-"
+
+
+def table(reports):
+    rows = [
+        ("targets detected", lambda s: pct(s["detected"], s["targets"])),
+        ("correctly identified (final class)", lambda s: pct(s["identified"], s["targets"])),
+        ("confirmed and correctly identified", lambda s: pct(s["confirmed_correct"], s["targets"])),
+        ("correctly mine / non-mine", lambda s: pct(s["mine_correct"], s["targets"])),
+        ("objects confirmed / reported", lambda s: "%d / %d" % (s["confirmed"], s["objects"])),
+        ("false contacts (objects at no target)", lambda s: "%d" % s["false_contacts"]),
+        ("re-looks (passed, object seen again)", lambda s: "%d (%d, %d)" % (
+            s["relooks"], s["relooks_passed"], s["relooks_second_look"])),
+        ("aspect change / pass range of re-looks", lambda s: "%.1f° / %.1f m" % (
+            s["aspect_change_mean_deg"], s["pass_range_mean_m"]) if s["relooks_passed"] else "-"),
+        ("mission time (distance)", lambda s: "%.0f s (%.0f m)" % (
+            s["mission_time_s"], s["distance_m"])),
+        ("extra distance and time on re-looks", lambda s: "%.0f m, %.0f s" % (
+            s["relook_distance_m"], s["relook_time_s"])),
+        ("latency ping abeam -> new waypoint, mean (max)", lambda s: "%.1f s (%.1f s)" % (
+            s["latency_mean_s"], s["latency_max_s"]) if s["relooks"] else "-"),
+        ("wall time", lambda s: "%.0f s" % s["wall_time_s"]),
+    ]
+    out = ["| | " + " | ".join(label for label, _ in reports) + " |",
+           "|---|" + "---|" * len(reports)]
+    for name, f in rows:
+        out.append("| " + name + " | " + " | ".join(f(r["summary"]) for _, r in reports) + " |")
+    return "\n".join(out)
+
+
+def chart(reports, path):
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    series = [("identified", "identified", "o"), ("confirmed_correct", "confirmed and right", "s"),
+              ("mine_correct", "mine / non-mine right", "^")]
+    for key, name, marker in series:
+        pts = sorted((r["summary"]["mission_time_s"], r["summary"][key] / r["summary"]["targets"])
+                     for _, r in reports)
+        ax.plot([p[0] for p in pts], [100 * p[1] for p in pts], marker=marker, label=name)
+    for label, r in reports:
+        s = r["summary"]
+        ax.annotate(label, (s["mission_time_s"], 100.0 * s["identified"] / s["targets"]),
+                    textcoords="offset points", xytext=(4, 6), fontsize=8)
+    ax.set_xlabel("mission time (s)")
+    ax.set_ylabel("targets (%)")
+    ax.set_ylim(0, 105)
+    ax.grid(alpha=0.3)
+    ax.legend(loc="lower right")
+    ax.set_title("Accuracy against mission time for re-look thresholds")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--out", required=True, help="folder for accuracy_vs_time.png")
+    p.add_argument("reports", nargs="+", help="REPORT.json or REPORT.json=LABEL")
+    a = p.parse_args()
+    reports = [load(s) for s in a.reports]
+    os.makedirs(a.out, exist_ok=True)
+    print(table(reports))
+    chart(reports, os.path.join(a.out, "accuracy_vs_time.png"))
+    print("wrote", os.path.join(a.out, "accuracy_vs_time.png"))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,68 @@
+#include "tools/sweep_ranks.h"
+
+#include <utility>
+
+#include "tools/chip_ranks.h"
+#include "tools/cli_helpers.h"
+
+namespace sonarloop::tools {
+namespace {
+
+// Renders every chip set of one slot in turn; false when one came back short (stopped).
+bool serve_slot(std::initializer_list<std::pair<const render::ChipRenderer*, std::size_t>> sets,
+                int slot, int threads) {
+  for (const auto& s : sets) {
+    if (render_sweep_chips(*s.first, slot, s.second, threads, {}) < s.second) return false;
+  }
+  return true;
+}
+
+bool serve_experiment(const atr::SweepExperiment& e, const atr::SweepSettings& settings,
+                      int threads) {
+  const std::size_t classes = e.classes.size();
+  const std::size_t n_test = static_cast<std::size_t>(e.test_count) * classes;
+  for (const atr::RenderGroup& g : atr::render_groups(e)) {
+    const std::size_t n_train = static_cast<std::size_t>(g.train_count) * classes;
+    const int slots = static_cast<int>(g.resolutions_m.size());
+    if (e.name == "fusion") {
+      const auto train = atr::fusion_specs(e, g, settings, false);
+      const auto test = atr::fusion_specs(e, g, settings, true);
+      const render::ChipRenderer rh(train.first), rs(train.second), th(test.first), ts(test.second);
+      for (int slot = 0; slot < slots; ++slot) {
+        if (!serve_slot({{&rh, n_train}, {&rs, n_train}, {&th, n_test}, {&ts, n_test}}, slot,
+                        threads)) {
+          return false;
+        }
+      }
+      continue;
+    }
+    const render::ChipRenderer train_r(atr::render_group_spec(e, g, settings, false));
+    const render::ChipRenderer test_r(atr::render_group_spec(e, g, settings, true));
+    for (int slot = 0; slot < slots; ++slot) {
+      if (!serve_slot({{&train_r, n_train}, {&test_r, n_test}}, slot, threads)) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+std::size_t render_sweep_chips(const render::ChipRenderer& r, int slot, std::size_t count,
+                               int threads,
+                               const std::function<void(const render::ChipImage&)>& sink) {
+  std::vector<render::ChipJob> jobs(count);
+  for (std::size_t i = 0; i < count; ++i)
+    jobs[i] = render::ChipJob{i, slot};
+  return render_chips_on_ranks(r, jobs, threads, sink, [] { return stop_requested(); });
+}
+
+bool serve_sweep(const std::vector<atr::SweepExperiment>& experiments,
+                 const atr::SweepSettings& settings, int threads) {
+  install_stop_flag();
+  for (const atr::SweepExperiment& e : experiments) {
+    if (!serve_experiment(e, settings, threads)) return false;
+  }
+  return true;
+}
+
+}  // namespace sonarloop::tools

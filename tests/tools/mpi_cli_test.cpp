@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/skip.h"
 #include "tests/support/temp_dir.h"
 
 namespace {
@@ -31,10 +32,8 @@ const std::string kMpirun =
     "ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" OMPI_ALLOW_RUN_AS_ROOT=1 "
     "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 300 mpirun -np 2 --oversubscribe ";
 
-void skip(const std::string& why) {
-  std::printf("SKIPPED: %s\n", why.c_str());
-  std::fflush(stdout);
-  std::exit(77);
+[[noreturn]] void skip(const std::string& why) {
+  sonarloop::testing::skip_test(why);
 }
 
 void skip_without_mpi() {

@@ -13,6 +13,7 @@
 #include "drivers/net/udp_receiver.h"
 #include "drivers/net/udp_sender.h"
 #include "drivers/xtf/xtf_file.h"
+#include "tests/support/skip.h"
 #include "tests/support/temp_dir.h"
 
 using sonarloop::testing::run_command;
@@ -197,11 +198,11 @@ TEST_CASE("replay cli: bad input gives a clear error") {
   CHECK(replay(dir.file("ok.log") + " --can bogus:spec", err) == 2);
 }
 
-TEST_CASE("replay cli: an unreachable UDP destination is a clear error") {
+TEST_CASE("replay cli: an unreachable UDP destination is a clear error", "[may_skip]") {
   // in a private network namespace (no routes, lo down) nothing can leave the machine
   if (run_command("unshare -n true > /dev/null 2>&1") != 0) {
-    WARN("skipped: 'unshare -n' (a private network namespace) is not permitted here");
-    return;
+    sonarloop::testing::skip_test(
+        "'unshare -n' (a private network namespace) is not permitted here");
   }
   TempDir dir("replay-cli-unreachable");
   const std::string err = dir.file("err.txt");

@@ -35,6 +35,7 @@
 #include "sim/vehicle/nav_sensor.h"
 #include "sim/vehicle/trajectory.h"
 #include "tests/emulator/test_scenario.h"
+#include "tests/support/skip.h"
 #include "tests/support/temp_dir.h"
 
 using namespace sonarloop;
@@ -272,25 +273,24 @@ TEST_CASE("run cli: python-can receives the navigation live from the socketcand 
   CHECK(rc == 0);
 }
 
-TEST_CASE("run cli: SocketCAN where the kernel has it") {
+TEST_CASE("run cli: SocketCAN where the kernel has it", "[may_skip]") {
   std::string reason;
   if (!can::SocketCanTransport::kernel_supports_can(&reason)) {
-    WARN("skipped: socket(AF_CAN) does not work here (" + reason + ")");
-    // and then `--can vcan0` is a clear error that names the fallbacks
+    // then `--can vcan0` is a clear error that names the fallbacks (REQUIRE: a failure here
+    // must fail the test, not end in the skip)
     testing::TempDir dir("run-cli-nocan");
     write_file(dir.file("s.yaml"), testing::small_scenario_yaml());
-    CHECK(run("run " + dir.file("s.yaml") + " --can vcan0 --duration 1", dir.file("err")) == 1);
+    REQUIRE(run("run " + dir.file("s.yaml") + " --can vcan0 --duration 1", dir.file("err")) == 1);
     const std::string err = slurp(dir.file("err"));
     INFO(err);
-    CHECK(err.find("vcan0") != std::string::npos);
-    CHECK(err.find("socketcand") != std::string::npos);
-    return;
+    REQUIRE(err.find("vcan0") != std::string::npos);
+    REQUIRE(err.find("socketcand") != std::string::npos);
+    testing::skip_test("socket(AF_CAN) does not work here (" + reason + ")");
   }
   if (if_nametoindex("vcan0") == 0) {
-    WARN(
-        "skipped: socket(AF_CAN) works but there is no vcan0 interface (modprobe vcan; ip link "
-        "add dev vcan0 type vcan; ip link set up vcan0)");
-    return;
+    testing::skip_test(
+        "socket(AF_CAN) works but there is no vcan0 interface (modprobe vcan; ip link add dev "
+        "vcan0 type vcan; ip link set up vcan0)");
   }
   testing::TempDir dir("run-cli-socketcan");
   write_file(dir.file("s.yaml"), testing::small_scenario_yaml());

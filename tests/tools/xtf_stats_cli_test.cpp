@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/skip.h"
 #include "tests/support/temp_dir.h"
 
 using sonarloop::testing::run_command;
@@ -30,8 +31,7 @@ const std::string kScenario = std::string(SONARLOOP_SOURCE_DIR) + "/config/reali
 
 void skip_without_numpy() {
   if (run_command(kPython + " -c 'import numpy' > /dev/null 2>&1") != 0) {
-    std::cout << "skipped: " << kPython << " cannot import numpy (tools/xtf_stats.py needs it)\n";
-    std::exit(77);
+    sonarloop::testing::skip_test(kPython + " cannot import numpy (tools/xtf_stats.py needs it)");
   }
 }
 

@@ -2,6 +2,7 @@
 // (`ip link add dev vcan0 type vcan && ip link set up vcan0`); otherwise the test prints why and
 // exits 77, which ctest reports as skipped.
 #include "drivers/can/socketcan.h"
+#include "tests/support/skip.h"
 
 #include <catch2/catch.hpp>
 #include <cstdio>
@@ -13,10 +14,8 @@ using namespace sonarloop::can;
 
 namespace {
 
-void skip(const std::string& why) {
-  std::printf("SKIPPED: %s\n", why.c_str());
-  std::fflush(stdout);
-  std::exit(77);
+[[noreturn]] void skip(const std::string& why) {
+  sonarloop::testing::skip_test(why);
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "drivers/xtf/xtf_file.h"
+#include "tests/support/skip.h"
 #include "tools/web/web_events.h"
 #include "tools/web/web_hub.h"
 #include "tools/web/web_server.h"
@@ -202,10 +203,10 @@ TEST_CASE("levels are coded over the display span, and base64 is RFC 4648") {
   CHECK(web::base64(bytes(6)) == "Zm9vYmFy");
 }
 
-TEST_CASE("over HTTP, a browser that stops reading never blocks the producer and gets the newest") {
+TEST_CASE("over HTTP, a browser that stops reading never blocks the producer and gets the newest",
+          "[may_skip]") {
   if (!web::web_available()) {
-    std::printf("SKIPPED: built without cpp-httplib\n");
-    std::exit(77);
+    sonarloop::testing::skip_test("built without cpp-httplib");
   }
   web::WebHubOptions o;
   o.client_queue_events = 64;
@@ -248,10 +249,9 @@ TEST_CASE("over HTTP, a browser that stops reading never blocks the producer and
         std::string::npos);
 }
 
-TEST_CASE("the server serves the page, the statistics and nothing else") {
+TEST_CASE("the server serves the page, the statistics and nothing else", "[may_skip]") {
   if (!web::web_available()) {
-    std::printf("SKIPPED: built without cpp-httplib\n");
-    std::exit(77);
+    sonarloop::testing::skip_test("built without cpp-httplib");
   }
   web::WebHub hub;
   web::WebServer server(hub, {"localhost", 0});

@@ -6,12 +6,10 @@
 #include <limits>
 #include <numbers>
 
+#include "units/angles.h"
+
 namespace sonarloop::atr {
-namespace {
-
-constexpr double kDegToRad = std::numbers::pi / 180.0;
-
-}  // namespace
+namespace {}  // namespace
 
 OnboardPipeline::OnboardPipeline(std::optional<Model> model, const OnboardOptions& options,
                                  ContactSink sink)
@@ -94,14 +92,14 @@ void OnboardPipeline::locate(const Detection& d, const ChipCentre& centre, doubl
   for (std::uint64_t s = w.oldest_seq(); s <= w.newest_seq(); ++s) {
     const PingRecord& r = w.record(s);
     if (std::abs(footprint_along_m(r) - centre.along_m) > options_.position_window_m) continue;
-    const double psi = r.heading_deg * kDegToRad;
+    const double psi = r.heading_deg * kRadPerDeg;
     const double ahead = centre.along_m - r.along_m;  // includes the pitch offset
     north += r.north_m + ahead * std::cos(psi) - side * ground * std::sin(psi);
     east += r.east_m + ahead * std::sin(psi) + side * ground * std::cos(psi);
     ++n;
   }
   if (n == 0) {
-    const double psi = rc.heading_deg * kDegToRad;
+    const double psi = rc.heading_deg * kRadPerDeg;
     const double ahead = centre.along_m - rc.along_m;
     north = rc.north_m + ahead * std::cos(psi) - side * ground * std::sin(psi);
     east = rc.east_m + ahead * std::sin(psi) + side * ground * std::cos(psi);

@@ -7,6 +7,8 @@
 #include <string>
 #include <variant>
 
+#include "units/angles.h"
+
 namespace sonarloop::atr {
 namespace {
 
@@ -17,7 +19,6 @@ constexpr double kMpsPerKnot = 1852.0 / 3600.0;
 constexpr double kDefaultXtfSoundVelocityMps = 750.0;
 // Largest samples per channel accepted: a UDP datagram holds at most 65,507 bytes.
 constexpr std::size_t kMaxSamples = 65536;
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 float level_db(double amplitude) {
   return amplitude > 0.0 ? static_cast<float>(20.0 * std::log10(amplitude)) : kNoEchoDb;
@@ -27,7 +28,7 @@ float level_db(double amplitude) {
 
 double footprint_along_m(const PingRecord& r) {
   const double a = std::isfinite(r.altitude_m) ? r.altitude_m : 0.0;
-  return r.along_m + a * std::tan(r.pitch_deg * kDegToRad);
+  return r.along_m + a * std::tan(r.pitch_deg * kRadPerDeg);
 }
 
 Waterfall::Waterfall(int capacity, std::optional<GeoPoint> frame_origin) : capacity_(capacity) {
@@ -159,7 +160,7 @@ PingRecord Waterfall::make_record(const xtf::XtfFileHeader& header, const xtf::X
     if (r.speed_m_s > 0.0 && dt > 0.0) {
       step = r.speed_m_s * dt;
     } else {
-      const double psi = r.heading_deg * kDegToRad;
+      const double psi = r.heading_deg * kRadPerDeg;
       step =
           (r.north_m - last_.north_m) * std::cos(psi) + (r.east_m - last_.east_m) * std::sin(psi);
     }

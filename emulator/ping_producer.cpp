@@ -8,11 +8,11 @@
 
 #include "drivers/xtf/xtf_codec.h"
 #include "emulator/xtf_ping.h"
+#include "units/angles.h"
 
 namespace sonarloop::emulator {
 namespace {
 
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 // Longest single sleep while waiting for a ping time, so that cancel() is seen promptly.
 constexpr std::int64_t kCancelPollNs = 20'000'000;
 // Start-up prepares one ping per this much track of the look-ahead window.

@@ -10,11 +10,10 @@
 #include <system_error>
 
 #include "sim/core/geodesy.h"
+#include "units/angles.h"
 
 namespace sonarloop::emulator {
-namespace {
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
-}  // namespace
+namespace {}  // namespace
 
 Recording::Recording(const std::string& dir, const xtf::XtfFileHeader& header,
                      const std::string& can_channel)

@@ -10,11 +10,11 @@
 #include <vector>
 
 #include "sim/render/quantise.h"
+#include "units/angles.h"
 
 namespace sonarloop::emulator {
 namespace {
 
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 constexpr double kHzPerKhz = 1000.0;
 // String fields of XTFFILEHEADER (docs/formats.md 1.2).
 constexpr std::size_t kSonarNameBytes = 16;

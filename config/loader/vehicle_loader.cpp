@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sim/vehicle/trajectory.h"
+#include "units/angles.h"
 
 namespace sonarloop::config {
 namespace {
@@ -36,8 +37,6 @@ constexpr std::string_view kNorthEast = "north, east";
 // multiplication by the double nearest π/180, so 180 -> π, 90 -> π/2 and 114.59155902616465 -> 2
 // exactly: the ranges below in degrees are validate()'s ranges in radians, bound for bound.
 enum class Unit { kSi, kDegree };
-
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
 double to_si(double v, Unit u) {
   return u == Unit::kDegree ? v * kRadPerDeg : v;

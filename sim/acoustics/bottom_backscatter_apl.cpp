@@ -7,12 +7,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "units/angles.h"
+
 namespace sonarloop::acoustics {
 namespace {
 
 using std::numbers::pi;
-constexpr double kDegPerRad = 180.0 / pi;
-constexpr double kRadPerDeg = pi / 180.0;
 constexpr double kCmPerMetre = 100.0;
 
 // Eq. 57 clamp of the blend argument (IV.C.4).

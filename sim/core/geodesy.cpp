@@ -5,11 +5,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "units/angles.h"
+
 namespace sonarloop {
 namespace {
 
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 // Newton's method on the series stops once a step is below this (rad; 1e-14 rad ≈ 0.06 µm on the
 // ground) or after kMaxNewtonSteps steps (3-4 suffice within the validity range).
 constexpr double kNewtonToleranceRad = 1e-14;

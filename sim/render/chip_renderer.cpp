@@ -16,11 +16,10 @@
 #include "sim/core/rng.h"
 #include "sim/render/quantise.h"
 #include "sim/seabed/seabed_model.h"
+#include "units/angles.h"
 
 namespace sonarloop::render {
 namespace {
-
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 // Sub-keys of RngStream::kDataset (the third hash key), one per use, never reused.
 constexpr std::uint64_t kKeyChip = 0;    // (index): the chip's parameters
@@ -302,7 +301,7 @@ ChipImage ChipRenderer::render(std::uint64_t index, int resolution) const {
   const double sonar_z = placed.X_WT.translation().z() - target.burial_m - p.altitude_m;
 
   // the track: closest approach to the target's centre at along-track offset 0
-  const Vec2 along = heading_vector(p.track_heading_deg * kDegToRad);
+  const Vec2 along = heading_vector(p.track_heading_deg * kRadPerDeg);
   const Vec2 look = p.side == 1 ? Vec2(-along.y(), along.x()) : Vec2(along.y(), -along.x());
   const Vec2 closest = p.target_ne_m - p.ground_range_m * look;
   chip.slant_range_m = (centre - Vec3(closest.x(), closest.y(), sonar_z)).norm();
@@ -373,7 +372,7 @@ ChipImage ChipRenderer::render(std::uint64_t index, int resolution) const {
     Pose pose;
     const Vec2 xy = closest + (k - centre_row + p.along_offset) * res * along;
     pose.position_W = Vec3(xy.x(), xy.y(), sonar_z);
-    pose.yaw = p.track_heading_deg * kDegToRad;
+    pose.yaw = p.track_heading_deg * kRadPerDeg;
     RenderOptions options;
     options.truth = true;
     options.labels = true;

@@ -12,11 +12,10 @@
 #include "sim/targets/placement.h"
 #include "sim/targets/shapes.h"
 #include "sim/targets/target_type.h"
+#include "units/angles.h"
 
 namespace sonarloop::scene {
 namespace {
-
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 // Scene ids: a counter, not randomness (ids never reach an output).
 std::atomic<std::uint64_t> g_next_scene_uid{1};
@@ -31,7 +30,7 @@ PlacedTarget place_target(const TargetDesc& t, int index, const seabed::SeabedMo
   // the base rests on the mean seabed level (slope + large-scale relief; textures are
   // zero-mean) at the target's centre, sunk by the burial depth
   const double seabed_z = water_depth_m - seabed.base_elevation(t.position_m.x(), t.position_m.y());
-  p.X_WT = targets::target_pose(t.position_m, t.heading_deg * kDegToRad,
+  p.X_WT = targets::target_pose(t.position_m, t.heading_deg * kRadPerDeg,
                                 targets::base_plane_z_down_m(seabed_z, t.burial_m));
   p.bounds_W.setEmpty();
   for (const auto& v : p.mesh_T.vertices)

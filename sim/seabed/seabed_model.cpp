@@ -10,11 +10,10 @@
 
 #include "sim/seabed/layer_rules.h"
 #include "sim/seabed/spectra.h"
+#include "units/angles.h"
 
 namespace sonarloop::seabed {
 namespace {
-
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 // Model ids: a counter, not randomness (ids never reach an output).
 std::atomic<std::uint64_t> g_next_model_uid{1};
@@ -55,7 +54,7 @@ std::unique_ptr<NoiseLayer> make_ripples(const scene::SceneDesc& desc, std::size
   // one frequency bin of the kernel's synthesis grid regularises the spectrum's singular lines
   const double eps = 1.0 / (2.0 * s.kernel_size * s.spacing_m);
   const double wl = r.wavelength_m;
-  const double dir = r.direction_deg * kDegToRad;
+  const double dir = r.direction_deg * kRadPerDeg;
   const double b1 = r.beta1;
   const double b = r.beta;
   s.spectrum = [=](double fx, double fy) { return ripple_psd(fx, fy, wl, dir, b1, b, eps); };
@@ -76,7 +75,7 @@ std::unique_ptr<NoiseLayer> make_rocky(const scene::SceneDesc& desc, std::size_t
   s.rms = r.rms_m;
   const double beta = r.beta;
   const double aniso = r.anisotropy;
-  const double dir = r.direction_deg * kDegToRad;
+  const double dir = r.direction_deg * kRadPerDeg;
   const double outer = r.outer_scale_m;
   s.spectrum = [=](double fx, double fy) { return rocky_psd(fx, fy, beta, aniso, dir, outer); };
   s.kernel_key = spectrum_key("rocky", {beta, aniso, dir, outer});

@@ -159,6 +159,17 @@ void Agent::maybe_relook(AgentObject& o) {
       static_cast<int>(relooks_.size()) >= params_.max_relooks) {
     return;
   }
+  const FusedDecision& f = o.decision.fused;
+  const bool surely_non_mine =
+      !f.mine_like && std::isfinite(f.mine_margin) && f.mine_margin >= params_.margin_threshold;
+  if (params_.relook_mine_relevant_only && surely_non_mine) {
+    if (!o.relook_skip_reported) {
+      o.relook_skip_reported = true;
+      events_.push_back(format("object %llu not re-looked: non-mine either way (mine margin %.3f)",
+                               static_cast<unsigned long long>(o.id), f.mine_margin));
+    }
+    return;
+  }
   // the first look's heading (the track sample where it was abeam); else the vehicle's now
   double first_heading = state_.heading_rad;
   double look_t = state_.t_s;

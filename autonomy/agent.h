@@ -33,7 +33,11 @@ struct AgentParams {
   double margin_threshold = 0.05;  // below it a look is uncertain (contact_decision.h)
   bool relooks = true;             // false: survey only, objects keep their first decision
   int max_relooks_per_object = 1;
-  int max_relooks = 1 << 30;       // the mission's budget of re-looks (the first ones asked for)
+  int max_relooks = 1 << 30;  // the mission's budget of re-looks (the first ones asked for)
+  // re-look only where the doubt could change the mine / non-mine decision: an uncertain object
+  // that is non-mine with a mine margin (contact_decision.h) of at least margin_threshold (e.g. a
+  // rock unsure between the two hemispheres) is left as it is. false: every uncertain object
+  bool relook_mine_relevant_only = true;
   double target_altitude_m = 7.5;  // altitude keeping, when the seabed's depth is measured
   double association_radius_m = 3.0;
   double history_s = 90.0;              // track kept to find where a contact was seen from
@@ -70,6 +74,7 @@ struct AgentObject {
   std::vector<double> look_headings_rad;  // per look, the vehicle's heading (NaN: not found)
   std::vector<double> look_t_s;           // per look, when it was abeam
   int relooks = 0;
+  bool relook_skip_reported = false;  // "not re-looked: non-mine either way" logged
   ObjectDecision decision;
 };
 

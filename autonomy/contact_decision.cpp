@@ -82,6 +82,14 @@ double decision_margin(const atr::Contact& c) {
   return std::max(m, 0.0);
 }
 
+namespace {
+// The relative gap between two group distances: (far - near) / near.
+double group_gap(double a, double b) {
+  const double lo = std::min(a, b), hi = std::max(a, b);
+  return lo > 0.0 ? (hi - lo) / lo : 0.0;
+}
+}  // namespace
+
 FusedDecision fuse_looks(const std::vector<atr::Contact>& looks) {
   FusedDecision f;
   std::map<std::string, double> sum;  // D_c
@@ -116,6 +124,7 @@ FusedDecision fuse_looks(const std::vector<atr::Contact>& looks) {
   }
   f.class_name = best;
   f.margin = second.empty() ? 0.0 : (sum[second] - sum[best]) / sum[best];
+  f.mine_margin = groups ? group_gap(mine_sum, non_mine_sum) : kNaN;
   if (groups) {
     f.mine_like = mine_sum < non_mine_sum;
   } else {
@@ -147,6 +156,9 @@ ObjectDecision decide(const std::vector<atr::Contact>& looks, double threshold) 
       d.fused.margin = decision_margin(c);
       d.fused.class_name = c.class_name;
       d.fused.mine_like = c.mine_like;
+      d.fused.mine_margin = std::isfinite(c.mine_distance) && std::isfinite(c.non_mine_distance)
+                                ? group_gap(c.mine_distance, c.non_mine_distance)
+                                : kNaN;
     }
     d.state = d.fused.margin >= threshold ? FinalState::kConfirmed : FinalState::kUncertain;
     return d;

@@ -26,6 +26,10 @@
 //   more looks:  confirmed when the fused margin >= T, or when the looks agree: at least two
 //                classified looks, and more than half of them, name the fused class as their
 //                own (independent aspects agree); else uncertain
+//
+// Mine margin: the same relative gap between the mine-like and non-mine group distances
+// (mine_distance, non_mine_distance; summed normalised over the looks as above): how sure the
+// mine / non-mine decision is, whatever the class. NaN when a look lacks either group.
 #include <optional>
 #include <string>
 #include <string_view>
@@ -45,6 +49,7 @@ struct FusedDecision {
   std::string class_name;  // empty when no look was classified
   bool mine_like = false;
   double margin = 0.0;
+  double mine_margin = 0.0;   // (d_far - d_near) / d_near of the two groups; NaN: no groups
   int looks = 0;              // classified looks used
   bool from_onboard = false;  // class and mine-likeness from the onboard's fused fields
 };

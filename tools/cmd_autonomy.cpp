@@ -98,6 +98,7 @@ Setup setup_from(const Args& args) {
       args.get_double("--pass-range", 1.0, 1000.0).value_or(p.relook.pass_range_m);
   p.margin_threshold = args.get_double("--threshold", 0.0, 1e9).value_or(p.margin_threshold);
   p.relooks = !args.has("--no-relook");
+  p.relook_mine_relevant_only = !args.has("--relook-all");
   p.max_relooks =
       static_cast<int>(args.get_int("--max-relooks", 0, 1 << 30).value_or(p.max_relooks));
   // re-looks may use the seabed's whole extent
@@ -122,6 +123,7 @@ int run_autonomy(const std::vector<std::string>& argv) {
                          {"--rate"},
                          {"--threshold"},
                          {"--no-relook", false},
+                         {"--relook-all", false},
                          {"--max-relooks"},
                          {"--pass-range"},
                          {"--line-spacing"},
@@ -279,6 +281,9 @@ options:
                          range less the nadir gap)
   --threshold T          decision margin below which a contact is re-looked (default 0.05)
   --no-relook            survey only: objects keep their first decision
+  --relook-all           re-look every uncertain object; by default one that is non-mine
+                         either way (its mine margin reaches --threshold, e.g. a rock unsure
+                         between the two hemispheres) is not re-looked
   --max-relooks N        the mission's re-look budget: the first N uncertain objects only
   --pass-range M         ground range of the contact on the re-look pass (default 25)
   --altitude M           altitude kept above the seabed (default: the scenario's)

@@ -124,6 +124,7 @@ int run_mission(const std::vector<std::string>& argv) {
                          {"--rate"},
                          {"--threshold"},
                          {"--no-relook", false},
+                         {"--relook-all", false},
                          {"--report"},
                          {"--out"},
                          {"--line-spacing"},
@@ -195,6 +196,7 @@ int run_mission(const std::vector<std::string>& argv) {
     }
   }
   if (args.has("--no-relook")) agent.push_back("--no-relook");
+  if (args.has("--relook-all")) agent.push_back("--relook-all");
 
   install_stop_flag();
   std::fprintf(stderr,
@@ -251,6 +253,7 @@ int run_mission(const std::vector<std::string>& argv) {
   settings.begin_object();
   settings.field("scenario", scenario.scene.name).field("rate", rate);
   settings.field("relooks", !args.has("--no-relook"));
+  settings.field("relook_all", args.has("--relook-all"));
   settings.field("model", *model).field("stopped", stop_requested() || !failure.empty());
   settings.field("failure", failure);
   settings.end_object();
@@ -285,6 +288,8 @@ options:
   --rate X               accelerated time for all three (default 10)
   --threshold T          the agent's re-look margin threshold (default 0.05)
   --no-relook            survey only (the baseline of the table)
+  --relook-all           re-look non-mine objects too (default: only where the doubt could
+                         change the mine / non-mine decision; see sonarloop autonomy --help)
   --max-relooks N        the agent's re-look budget (default: no limit)
   --line-spacing M       lawnmower line spacing (default 40)
   --pass-range M         re-look pass range (default 25)

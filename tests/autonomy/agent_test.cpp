@@ -108,3 +108,44 @@ TEST_CASE("without re-looks the object keeps its uncertain first decision") {
   CHECK(agent.objects()[0].decision.state == FinalState::kUncertain);
   CHECK_FALSE(agent.take_events().empty());
 }
+
+TEST_CASE("an object non-mine either way is not re-looked, unless every doubt is") {
+  // a rock unsure between the two hemispheres: class margin 0.01, but the non-mine group is 20 %
+  // nearer than the mine-like one
+  auto rock_seen = [](const VehicleState& s) {
+    atr::Contact c = contact_seen(1, {30.0, 20.0}, s);
+    c.class_name = "small_hemisphere";
+    c.mine_like = false;
+    c.scores = {{"small_hemisphere", 40.0}, {"hemisphere", 40.4}, {"manta", 48.0}};
+    c.distance = 40.0;
+    c.runner_up = "hemisphere";
+    c.runner_up_distance = 40.4;
+    c.non_mine_distance = 40.0;
+    c.mine_distance = 48.0;
+    return c;
+  };
+  for (const bool relook_all : {false, true}) {
+    AgentParams p;
+    p.relook_mine_relevant_only = !relook_all;
+    VehicleState start;
+    Agent agent(p, {Leg{{0, 0}, {100, 0}}}, start);
+    for (int i = 0; i < 20; ++i)
+      agent.step(1.0, std::nullopt);
+    agent.on_contact(rock_seen(agent.state()));
+    REQUIRE(agent.objects().size() == 1);
+    CHECK(agent.objects()[0].decision.state == FinalState::kUncertain);
+    CHECK(agent.objects()[0].decision.fused.mine_margin == Approx(0.2));
+    CHECK(agent.relooks().size() == (relook_all ? 1u : 0u));
+  }
+  // a mine-like uncertain object is re-looked by default (the first test case), and so is a
+  // non-mine one whose mine margin is itself below the threshold
+  AgentParams p;
+  VehicleState start;
+  Agent agent(p, {Leg{{0, 0}, {100, 0}}}, start);
+  for (int i = 0; i < 20; ++i)
+    agent.step(1.0, std::nullopt);
+  atr::Contact close = rock_seen(agent.state());
+  close.mine_distance = 41.0;  // mine margin 0.025 < 0.05
+  agent.on_contact(close);
+  CHECK(agent.relooks().size() == 1);
+}

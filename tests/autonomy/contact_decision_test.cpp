@@ -152,3 +152,19 @@ TEST_CASE("JsonLine reads arrays of objects, also from pretty JSON") {
   CHECK(j->number("n") == Approx(3.0));
   CHECK(j->objects("n").empty());
 }
+
+TEST_CASE("the mine margin is the two groups' relative gap, over the looks") {
+  atr::Contact a = look("hemisphere", {{"hemisphere", 40.0}, {"manta", 50.0}}, false);
+  a.non_mine_distance = 40.0;
+  a.mine_distance = 50.0;
+  CHECK(decide({a}, 0.05).fused.mine_margin == Approx(0.25));
+  // two looks: each normalised by its mean distance (45 and 30), then summed
+  atr::Contact b = look("hemisphere", {{"hemisphere", 27.0}, {"manta", 33.0}}, false);
+  b.non_mine_distance = 27.0;
+  b.mine_distance = 33.0;
+  const double non_mine = 40.0 / 45.0 + 27.0 / 30.0, mine = 50.0 / 45.0 + 33.0 / 30.0;
+  CHECK(decide({a, b}, 0.05).fused.mine_margin == Approx((mine - non_mine) / non_mine));
+  // without the groups: unknown
+  const atr::Contact bare = look("hemisphere", {{"hemisphere", 40.0}, {"manta", 50.0}}, false);
+  CHECK(std::isnan(decide({bare}, 0.05).fused.mine_margin));
+}

@@ -53,6 +53,19 @@ RunStats run_max(const std::string& dir, int threads, double duration_s) {
   return emu.run();
 }
 
+// A pose message of a level vehicle (pitch and roll 0) at `where`, unstamped.
+PoseMessage level_pose(std::uint32_t sequence, GeoPoint where, double depth_m, double heading_rad) {
+  PoseMessage m;
+  m.sequence = sequence;
+  m.latitude_deg = where.latitude_deg;
+  m.longitude_deg = where.longitude_deg;
+  m.depth_m = depth_m;
+  m.heading_rad = heading_rad;
+  m.pitch_rad = 0.0;
+  m.roll_rad = 0.0;
+  return m;
+}
+
 std::size_t count_lines(const std::string& text) {
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
 }
@@ -194,15 +207,7 @@ TEST_CASE("emulator --pose-from: pings follow the external pose and pause while 
     for (int w = 0; !started && w < 10000; ++w)
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     for (std::uint32_t i = 0; i < 50; ++i) {
-      PoseMessage m;
-      m.sequence = i;
-      m.latitude_deg = where.latitude_deg;
-      m.longitude_deg = where.longitude_deg;
-      m.depth_m = 12.0;
-      m.heading_rad = 0.3;
-      m.pitch_rad = 0.0;
-      m.roll_rad = 0.0;
-      tx.send(encode_pose_message(m));
+      tx.send(encode_pose_message(level_pose(i, where, 12.0, 0.3)));
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
   });
@@ -328,16 +333,9 @@ std::pair<std::vector<PingAt>, RunStats> fly_10hz_pose_source(const std::string&
       const auto now = std::chrono::system_clock::now();
       const double s = std::chrono::duration<double>(now - t0).count();
       const GeoPoint g = ltp.to_geodetic(-20.0 + 2.0 * s, -3.0);
-      PoseMessage m;
-      m.sequence = i;
+      PoseMessage m = level_pose(i, g, 14.0, 0.0);
       m.time_unix_ns =
           std::chrono::duration_cast<std::chrono::nanoseconds>(now.time_since_epoch()).count();
-      m.latitude_deg = g.latitude_deg;
-      m.longitude_deg = g.longitude_deg;
-      m.depth_m = 14.0;
-      m.heading_rad = 0.0;
-      m.pitch_rad = 0.0;
-      m.roll_rad = 0.0;
       tx.send(encode_pose_message(m));
       std::this_thread::sleep_until(start + std::chrono::milliseconds(100) * (i + 1));
     }

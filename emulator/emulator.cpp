@@ -84,7 +84,7 @@ int max_udp_samples_per_side(int bytes_per_sample) {
 }
 
 struct Emulator::Impl {
-  Impl(const config::Scenario& sc, const EmulatorOptions& opt, Clock& clk, EmulatorHooks h)
+  Impl(const Scenario& sc, const EmulatorOptions& opt, Clock& clk, EmulatorHooks h)
       : options(opt),
         clock(clk),
         hooks(std::move(h)),
@@ -96,7 +96,7 @@ struct Emulator::Impl {
   EmulatorOptions options;
   Clock& clock;
   EmulatorHooks hooks;
-  config::Scenario scenario;
+  Scenario scenario;
   LocalTangentPlane ltp;
   Pacer pacer;
   std::int64_t construct_ns = 0;
@@ -599,7 +599,7 @@ RunStats Emulator::Impl::run() {
 
 // ---- Emulator ----
 
-Emulator::Emulator(const config::Scenario& scenario, const EmulatorOptions& options, Clock& clock,
+Emulator::Emulator(const Scenario& scenario, const EmulatorOptions& options, Clock& clock,
                    EmulatorHooks hooks)
     : impl_(std::make_unique<Impl>(scenario, options, clock, std::move(hooks))) {
   impl_->configure();

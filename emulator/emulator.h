@@ -46,7 +46,6 @@
 #include <string_view>
 #include <vector>
 
-#include "config/loader/scenario_loader.h"
 #include "drivers/can/can_transport.h"
 #include "drivers/net/host_port.h"
 #include "drivers/net/udp_sender.h"
@@ -55,6 +54,7 @@
 #include "emulator/run_stats.h"
 #include "sim/render/ping_renderer.h"
 #include "sim/render/sonar.h"
+#include "sim/scenario.h"
 
 namespace sonarloop::emulator {
 
@@ -110,7 +110,7 @@ class Emulator {
   // source) so that configuration errors surface here with a clear message: std::invalid_argument
   // (bad option values, a ping too large for a datagram) or std::runtime_error (a port in use,
   // no kernel CAN, a directory that cannot be created).
-  Emulator(const config::Scenario& scenario, const EmulatorOptions& options, Clock& clock,
+  Emulator(const Scenario& scenario, const EmulatorOptions& options, Clock& clock,
            EmulatorHooks hooks = {});
   ~Emulator();
   Emulator(const Emulator&) = delete;

@@ -25,7 +25,6 @@ declare -A allowed=(
 )
 
 KNOWN=(
-  "emulator/emulator.h -> config/loader/scenario_loader.h"
   "atr/chip_cutter.h -> sim/render/chip_renderer.h"
   "atr/sweep.h -> sim/render/chip_renderer.h"
   "atr/waterfall.h -> sim/core/geodesy.h"

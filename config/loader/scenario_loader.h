@@ -9,23 +9,19 @@
 // Every key is documented in config/reference.yaml. Unknown top-level keys are reported together
 // (one ConfigError listing each, with suggestions), after the sections have been read.
 //
-// Adding a section (e.g. `vehicle:`): a member of Scenario, one line in parse_scenario_node
-// that reads f.child("<key>") with its own parser, and the key in kScenarioSections.
+// Adding a section (e.g. `vehicle:`): a member of Scenario (sim/scenario.h), one line in
+// parse_scenario_node that reads f.child("<key>") with its own parser, and the key in
+// kScenarioSections.
 #include <string>
 #include <string_view>
 
 #include "config/loader/yaml_fields.h"
-#include "sim/render/sonar.h"
-#include "sim/scene/scene_desc.h"
-#include "sim/vehicle/vehicle_desc.h"
+#include "sim/scenario.h"
 
 namespace sonarloop::config {
 
-struct Scenario {
-  scene::SceneDesc scene;        // the top-level scene keys
-  render::SonarDesc sonar;       // sonar: (default: the kDefaultSonarPreset preset)
-  vehicle::VehicleDesc vehicle;  // vehicle: (default: VehicleDesc{})
-};
+// The scenario type is the simulation's own (sim/scenario.h); the loader fills it.
+using Scenario = sonarloop::Scenario;
 
 // The top-level keys of a scenario besides the scene keys, comma-separated in reference order
 // (for the "allowed" text of a document that is not a map).

@@ -41,8 +41,8 @@ ChipSpec highlight_chip_spec(int width, int height) {
   ChipSpec s;
   s.rows = height;
   s.cols = width;
-  s.pixel_along_m = render::kHighlightChipAlong_m / height;
-  s.pixel_range_m = render::kHighlightChipRange_m / width;
+  s.pixel_along_m = chips::kHighlightChipAlong_m / height;
+  s.pixel_range_m = chips::kHighlightChipRange_m / width;
   return s;
 }
 
@@ -76,7 +76,7 @@ void ChipCutter::fill_row(const Waterfall& w, std::uint64_t seq, int side, doubl
   if (std::abs(b - pr) <= kSameBinTolerance * pr) {
     const auto bin0 = static_cast<std::ptrdiff_t>(std::lround((first_edge_m - r0) / b));
     for (int j = 0; j < ct; ++j)
-      row[j] = render::chip_pixel(L[static_cast<std::size_t>(bin0 + j)], spec_.levels);
+      row[j] = chips::chip_pixel(L[static_cast<std::size_t>(bin0 + j)], spec_.levels);
     return;
   }
   for (int j = 0; j < ct; ++j) {
@@ -96,7 +96,7 @@ void ChipCutter::fill_row(const Waterfall& w, std::uint64_t seq, int side, doubl
       weight += overlap;
     }
     const double level = power > 0.0 ? 10.0 * std::log10(power / weight) : kNoEchoDb;
-    row[j] = render::chip_pixel(level, spec_.levels);
+    row[j] = chips::chip_pixel(level, spec_.levels);
   }
 }
 

@@ -12,8 +12,8 @@
 //             chips the FIRST, so that a chip is the seabed seen from above, not mirrored, with
 //             the sonar looking to the right;
 //   pixels    round(255 · (L + 60) / 60) clipped to 0..255 for the level L in dB re full scale
-//             (render::chip_pixel with the default ChipLevels), as floats 0..255 like a PNG chip
-//             read by atr/chip_folder.h.
+//             (chips::chip_pixel with the default ChipLevels), as floats 0..255 like a PNG chip
+//             read by study/chip_folder.h.
 //
 // Along-track resampling. The dataset's chips have one ping per pixel (ping spacing = pixel
 // size); a live sonar pings at its own rate (the default scenario: every 0.067 s at 2 m/s, one
@@ -39,7 +39,7 @@
 
 #include "atr/chip.h"
 #include "atr/waterfall.h"
-#include "sim/render/chip_renderer.h"
+#include "common/chip_convention.h"
 
 namespace sonarloop::atr {
 
@@ -52,7 +52,7 @@ struct ChipSpec {
   int cols = 60;                // pixels in range (model chip_width)
   double pixel_along_m = 0.05;  // kHighlightChipAlong_m / rows
   double pixel_range_m = 0.05;  // kHighlightChipRange_m / cols
-  render::ChipLevels levels;    // -60..0 dB
+  chips::ChipLevels levels;     // -60..0 dB
 };
 
 // The highlight-chip spec for a model's chip size. Throws std::invalid_argument for a size

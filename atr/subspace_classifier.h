@@ -230,7 +230,7 @@ using ChipLoader = std::function<ChipView(std::size_t index)>;
 
 // The same, for chips read one at a time: `chips` gives labels, sources and aspect angles (their
 // pixels are not used), `load` the pixels, each chip once, in order. Training then holds the
-// normalised chips only, never all the raw ones (atr/chip_folder.h read_folder_chip).
+// normalised chips only, never all the raw ones (study/chip_folder.h read_folder_chip).
 Model train_model(std::span<const LabelledChip> chips, const ChipLoader& load,
                   const TrainOptions& options, TrainReport* report = nullptr);
 

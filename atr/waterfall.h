@@ -19,7 +19,7 @@
 // Navigation per ping (XTF ping header, docs/formats.md 1.5): SensorY/X (latitude/longitude when
 // NavUnits = 3, else northing/easting in metres), SensorHeading, SensorPitch (+ nose up),
 // SensorRoll, SensorPrimaryAltitude (0 = unknown -> NaN), SensorDepth, SensorSpeed (knots).
-// Positions are kept as north/east metres in a local tangent plane (sim/core/geodesy.h) whose
+// Positions are kept as north/east metres in a local tangent plane (common/geodesy.h) whose
 // origin is the frame origin given at construction (the scenario's origin: then positions are
 // those of its scene.json and truth.json), else the first ping's position; converted back to
 // latitude/longitude for reports.
@@ -41,8 +41,8 @@
 #include <span>
 #include <vector>
 
+#include "common/geodesy.h"
 #include "drivers/xtf/xtf_types.h"
-#include "sim/core/geodesy.h"
 
 namespace sonarloop::atr {
 

@@ -29,8 +29,8 @@
 #include <cstdint>
 #include <span>
 
+#include "common/geodesy.h"
 #include "drivers/can/can_frame.h"
-#include "sim/core/geodesy.h"
 #include "sim/core/sim_time.h"
 #include "sim/vehicle/nav_sensor.h"
 

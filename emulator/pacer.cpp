@@ -65,14 +65,14 @@ std::int64_t MonotonicClock::process_cpu_ns() const {
 }
 
 void MonotonicClock::sleep_until(std::int64_t deadline_ns) {
+  if (deadline_ns <= 0) return;
   // libstdc++'s steady_clock is CLOCK_MONOTONIC: the same time base as now_ns()
   timespec ts{};
   ts.tv_sec = static_cast<time_t>(deadline_ns / kNanosecondsPerSecond);
   ts.tv_nsec = static_cast<long>(deadline_ns % kNanosecondsPerSecond);
-  if (deadline_ns <= 0) return;
-  // absolute deadline: an interrupted sleep resumes towards the same instant
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
-  }
+  // EINTR (a signal) returns early, as the interface allows: every caller rechecks its stop flag
+  // and the time and sleeps again towards the same absolute deadline
+  clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr);
 }
 
 // ---- Wakeup ----

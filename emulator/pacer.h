@@ -9,9 +9,9 @@
 //
 // This file holds
 // - the pure scheduling rules (next_deadline, tested with a simulated clock, no sleeping);
-// - Clock: the only interface through which the emulator reads a clock. MonotonicClock
-//   (pacer.cpp) is the one implementation that reads the system clocks; every other component
-//   receives times as arguments or a Clock& / now function;
+// - Clock: the only interface through which the emulator reads a clock (the run loop, the render
+//   workers and replay alike). MonotonicClock (pacer.cpp) is the one implementation that reads the
+//   system clocks; every other component receives times as arguments or a Clock& / now function;
 // - Wakeup: a sleep that another thread can cut short (a rendered ping became ready);
 // - Pacer: the sim-time <-> wall-time mapping for --rate realtime | max | X.
 #include <atomic>
@@ -51,8 +51,8 @@ PingWindow ping_window(SimTime send_time, SimTime next_send_time, SimTime now);
 
 // ---- clocks ----
 
-// The clocks the emulator reads, all in ns. MonotonicClock reads the system; tests may substitute
-// a simulated clock.
+// The clocks the emulator reads, all in ns. MonotonicClock reads the system; tests substitute a
+// simulated clock (tests/support/simulated_clock.h).
 class Clock {
  public:
   virtual ~Clock() = default;
@@ -62,11 +62,15 @@ class Clock {
   virtual std::int64_t utc_now_ns() const = 0;
   // CPU time used by this process (user + system, getrusage), ns.
   virtual std::int64_t process_cpu_ns() const = 0;
-  // Sleeps until monotonic time `deadline_ns` (absolute; returns at once if it has passed).
+  // Sleeps until monotonic time `deadline_ns` (absolute; returns at once if it has passed). May
+  // return early when a signal arrives (so that Ctrl-C is seen at once): callers check their stop
+  // flag and the time, and loop.
   virtual void sleep_until(std::int64_t deadline_ns) = 0;
 };
 
-// The system clocks (the only place in the emulator that reads a wall clock).
+// The system clocks (the only place in the emulator that reads a wall clock). sleep_until() is
+// clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME): an absolute deadline, so a late wake-up never
+// shifts the next one.
 class MonotonicClock final : public Clock {
  public:
   std::int64_t now_ns() const override;

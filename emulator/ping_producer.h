@@ -24,11 +24,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/geodesy.h"
 #include "drivers/xtf/xtf_types.h"
 #include "emulator/pacer.h"
 #include "emulator/pose_source.h"
 #include "emulator/render_queue.h"
-#include "sim/core/geodesy.h"
 #include "sim/render/ping_renderer.h"
 #include "sim/vehicle/nav_sensor.h"
 #include "sim/vehicle/trajectory.h"

@@ -58,11 +58,11 @@
 #include <string>
 #include <thread>
 
+#include "common/geodesy.h"
 #include "drivers/can/can_transport.h"
 #include "drivers/net/host_port.h"
 #include "drivers/net/udp_receiver.h"
 #include "emulator/pose_history.h"
-#include "sim/core/geodesy.h"
 #include "sim/frames.h"
 
 namespace sonarloop::emulator {

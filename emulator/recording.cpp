@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "sim/core/geodesy.h"
+#include "common/geodesy.h"
 #include "units/angles.h"
 
 namespace sonarloop::emulator {

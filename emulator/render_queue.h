@@ -35,9 +35,9 @@
 #include <thread>
 #include <vector>
 
+#include "common/geodesy.h"
 #include "drivers/xtf/xtf_types.h"
 #include "emulator/pacer.h"
-#include "sim/core/geodesy.h"
 #include "sim/frames.h"
 #include "sim/render/ping_renderer.h"
 

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <stdexcept>
 
 #include "drivers/can/candump_log.h"
@@ -14,7 +13,6 @@
 namespace sonarloop::emulator {
 namespace {
 
-constexpr std::int64_t kNsPerS = 1'000'000'000;
 // Longest single sleep while waiting for a deadline, so that a stop request (SIGINT, which may be
 // delivered to another thread and not interrupt the sleep) is seen within this time.
 constexpr std::int64_t kStopPollNs = 50'000'000;
@@ -27,10 +25,10 @@ bool stop_requested(const ReplayOptions& o) {
   return o.stop && o.stop->load(std::memory_order_relaxed);
 }
 
-// Absolute-deadline pacing against the replay clock, and the counters that go with it.
+// Absolute-deadline pacing against the clock, and the counters that go with it.
 class Pacing {
  public:
-  Pacing(ReplayClock& clock, const ReplayOptions& options, ReplaySummary& summary)
+  Pacing(Clock& clock, const ReplayOptions& options, ReplaySummary& summary)
       : clock_(clock), options_(options), summary_(summary), start_ns_(clock.now_ns()) {
     last_progress_ns_ = start_ns_;
   }
@@ -69,7 +67,7 @@ class Pacing {
   }
 
  private:
-  ReplayClock& clock_;
+  Clock& clock_;
   const ReplayOptions& options_;
   ReplaySummary& summary_;
   std::int64_t start_ns_;
@@ -86,22 +84,6 @@ std::int64_t median(std::vector<std::int64_t> v) {
 }
 
 }  // namespace
-
-// ---- clock ----
-
-std::int64_t MonotonicReplayClock::now_ns() {
-  timespec ts{};
-  ::clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * kNsPerS + ts.tv_nsec;
-}
-
-void MonotonicReplayClock::sleep_until(std::int64_t t_ns) {
-  timespec ts{};
-  ts.tv_sec = static_cast<time_t>(t_ns / kNsPerS);
-  ts.tv_nsec = static_cast<long>(t_ns % kNsPerS);
-  // EINTR (a signal) returns early; the caller checks the time and its stop flag and loops
-  ::clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr);
-}
 
 // ---- rate ----
 
@@ -259,7 +241,7 @@ XtfTimeline read_xtf_timeline(const std::string& path) {
 
 // ---- XTF replay ----
 
-ReplaySummary replay_xtf(const std::string& path, const DatagramSink& send, ReplayClock& clock,
+ReplaySummary replay_xtf(const std::string& path, const DatagramSink& send, Clock& clock,
                          const ReplayOptions& options_in) {
   ReplayOptions options = options_in;
   if (!options.on_warning) options.on_warning = default_warning;
@@ -361,7 +343,7 @@ ReplaySummary replay_xtf(const std::string& path, const DatagramSink& send, Repl
 // ---- candump replay ----
 
 ReplaySummary replay_candump(const std::string& path,
-                             std::span<can::CanTransport* const> transports, ReplayClock& clock,
+                             std::span<can::CanTransport* const> transports, Clock& clock,
                              const ReplayOptions& options_in) {
   ReplayOptions options = options_in;
   if (!options.on_warning) options.on_warning = default_warning;

@@ -11,11 +11,10 @@
 // Pacing uses absolute deadlines, deadline(k) = start + (t_k - t_0) / rate, so lateness never
 // accumulates: a late frame is sent at once and the next one keeps its own deadline.
 //
-// Clock. ReplayClock is the single clock access point of the replay code: replay_xtf(),
-// replay_candump() and the `replay` command read the time and wait only through it. The real one
-// (MonotonicReplayClock) reads CLOCK_MONOTONIC and sleeps with clock_nanosleep(TIMER_ABSTIME);
-// tests pass a simulated clock and check the deadlines exactly. (To be merged with the project's
-// pacer, emulator/pacer.h, once that exists: sleep_until() is the piece it needs.)
+// Clock. replay_xtf(), replay_candump() and the `replay` command read the time and wait only
+// through the emulator's Clock (emulator/pacer.h), the same interface the run loop uses. The real
+// one (MonotonicClock) reads CLOCK_MONOTONIC and sleeps with clock_nanosleep(TIMER_ABSTIME); tests
+// pass a simulated clock (tests/support/simulated_clock.h) and check the deadlines exactly.
 //
 // XTF timing (make_xtf_schedule). A ping's time is its header's Year..HSeconds (1/100 s
 // resolution, xtf::time_utc_ns). Relative times are kept as recorded wherever they increase.
@@ -68,27 +67,9 @@
 
 #include "drivers/can/can_transport.h"
 #include "drivers/net/udp_sender.h"
+#include "emulator/pacer.h"
 
 namespace sonarloop::emulator {
-
-// ---- the clock access point ----
-
-class ReplayClock {
- public:
-  virtual ~ReplayClock() = default;
-  // Monotonic time in ns (arbitrary epoch).
-  virtual std::int64_t now_ns() = 0;
-  // Returns once now_ns() >= t_ns (at once if that time has passed). May return early when a
-  // signal arrives; callers loop.
-  virtual void sleep_until(std::int64_t t_ns) = 0;
-};
-
-// CLOCK_MONOTONIC; sleep_until() is clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME).
-class MonotonicReplayClock final : public ReplayClock {
- public:
-  std::int64_t now_ns() override;
-  void sleep_until(std::int64_t t_ns) override;
-};
 
 // ---- options and results ----
 
@@ -194,14 +175,14 @@ using DatagramSink = std::function<bool(std::span<const std::uint8_t>)>;
 
 // Replays `path` into `send` (see the header comment). Returns the summary at the end, or when
 // options.stop was set.
-ReplaySummary replay_xtf(const std::string& path, const DatagramSink& send, ReplayClock& clock,
+ReplaySummary replay_xtf(const std::string& path, const DatagramSink& send, Clock& clock,
                          const ReplayOptions& options = {});
 
 // ---- candump ----
 
 // Replays `path` to every transport (see the header comment).
 ReplaySummary replay_candump(const std::string& path,
-                             std::span<can::CanTransport* const> transports, ReplayClock& clock,
+                             std::span<can::CanTransport* const> transports, Clock& clock,
                              const ReplayOptions& options = {});
 
 }  // namespace sonarloop::emulator

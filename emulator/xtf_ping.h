@@ -37,8 +37,8 @@
 #include <cstdint>
 #include <string>
 
+#include "common/geodesy.h"
 #include "drivers/xtf/xtf_types.h"
-#include "sim/core/geodesy.h"
 #include "sim/render/ping_renderer.h"
 #include "sim/render/sonar.h"
 

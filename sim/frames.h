@@ -17,11 +17,9 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-namespace sonarloop {
+#include "common/vectors.h"
 
-using Vec2 = Eigen::Vector2d;
-using Vec3 = Eigen::Vector3d;
-using Mat3 = Eigen::Matrix3d;
+namespace sonarloop {
 
 // R_WV from yaw, pitch, roll (radians), ZYX order.
 inline Mat3 rotation_from_ypr(double yaw, double pitch, double roll) {

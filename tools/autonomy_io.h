@@ -13,10 +13,10 @@
 
 #include "atr/contact.h"
 #include "autonomy/agent.h"
+#include "common/geodesy.h"
 #include "drivers/can/can_transport.h"
 #include "drivers/net/udp_receiver.h"
 #include "drivers/net/udp_sender.h"
-#include "sim/core/geodesy.h"
 
 namespace sonarloop::tools {
 

@@ -39,7 +39,7 @@ std::pair<std::string, double> parse_height(const std::string& item) {
 
 }  // namespace
 
-std::optional<atr::ChipSize> chip_size_option(const Args& args) {
+std::optional<study::ChipSize> chip_size_option(const Args& args) {
   const auto text = args.get("--size");
   if (!text) return std::nullopt;
   const auto x = text->find_first_of("xX");
@@ -54,7 +54,7 @@ std::optional<atr::ChipSize> chip_size_option(const Args& args) {
     throw UsageError("--size: '" + *text + "' is not WIDTHxHEIGHT in pixels (e.g. 64x64, 1 to " +
                      std::to_string(kMaxChipSide) + " a side)");
   }
-  return atr::ChipSize{static_cast<int>(w), static_cast<int>(h)};
+  return study::ChipSize{static_cast<int>(w), static_cast<int>(h)};
 }
 
 std::map<std::string, atr::ClassMetadata, std::less<>> sim_class_metadata() {

@@ -18,15 +18,15 @@
 #include <string>
 #include <vector>
 
-#include "atr/chip_folder.h"
 #include "atr/subspace_classifier.h"
+#include "study/chip_folder.h"
 #include "tools/args.h"
 
 namespace sonarloop::tools {
 
 // --size WxH (e.g. 64x64; each side 1 to 8192): resample every chip to it. The command must
 // declare the option. Throws UsageError for a malformed value.
-std::optional<atr::ChipSize> chip_size_option(const Args& args);
+std::optional<study::ChipSize> chip_size_option(const Args& args);
 
 // The simulator's target types as class metadata, by key.
 std::map<std::string, atr::ClassMetadata, std::less<>> sim_class_metadata();

@@ -115,6 +115,92 @@ void print_events(autonomy::Agent& agent, bool quiet) {
   }
 }
 
+// The survey and the wiring, one line each.
+void print_plan(const Setup& setup, const std::vector<autonomy::Leg>& survey, double spacing_m,
+                const AgentRunInfo& info, double rate, const ContactListener& contacts,
+                const net::HostPort& pose_to, const std::string& nav_spec) {
+  std::fprintf(stderr,
+               "autonomy: survey of (%.0f, %.0f)-(%.0f, %.0f) m, %zu lines %.0f m apart (%.0f "
+               "m), re-looks %s (margin threshold %.3g, pass range %.0f m), rate %g\n",
+               setup.area.min.north_m, setup.area.min.east_m, setup.area.max.north_m,
+               setup.area.max.east_m, survey.size(), spacing_m, info.survey_plan_m,
+               info.relooks ? "on" : "off", info.threshold, setup.params.relook.pass_range_m, rate);
+  std::fprintf(stderr, "autonomy: contacts on %s, pose to udp %s, nav from %s ...\n",
+               contacts.describe().c_str(), net::to_string(pose_to).c_str(), nav_spec.c_str());
+}
+
+// How the agent flies: at `rate` times real time, publishing its pose at pose_hz, until the
+// survey is done and drain_s of mission time has passed, max_duration_s, or a stop request.
+struct Flight {
+  double rate = 1.0;
+  double pose_hz = 20.0;
+  double drain_s = 20.0;
+  double max_duration_s = 1e7;
+  bool quiet = false;
+};
+
+// The agent's loop: steps the vehicle model to the mission time, hands it the contacts received,
+// publishes its pose, and measures how far the navigation is from it (into info).
+void fly(autonomy::Agent& agent, const Flight& f, NavListener& nav, ContactListener& contacts,
+         PosePublisher& pose, AgentRunInfo& info) {
+  const auto wall0 = Clock::now();
+  const auto period =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / f.pose_hz));
+  auto next = wall0;
+  double offset_sum = 0.0;
+  std::uint64_t offset_n = 0, last_position_updates = 0;
+  double done_at_s = -1.0;  // mission time the survey ended, < 0 while flying
+  while (!stop_requested()) {
+    next += period;
+    std::this_thread::sleep_until(next);
+    // the model runs at the emulator's rate: mission time = rate x wall time
+    const double target_s = f.rate * seconds_since(wall0);
+    const NavFix fix = nav.latest();
+    agent.step(target_s - agent.state().t_s, fix.seabed_depth_m);
+    for (const atr::Contact& c : contacts.take())
+      agent.on_contact(c);
+    pose.publish(agent.state(), unix_now_ns());
+    if (fix.position && fix.position_updates != last_position_updates) {
+      last_position_updates = fix.position_updates;
+      const double off = autonomy::distance_m(*fix.position, agent.state().position);
+      offset_sum += off;
+      ++offset_n;
+      info.nav_offset_max_m = std::max(info.nav_offset_max_m, off);
+    }
+    print_events(agent, f.quiet);
+    // done: wait `drain_s` of mission time for the last contacts (which may ask for re-looks)
+    if (agent.mission_done()) {
+      if (done_at_s < 0) {
+        done_at_s = agent.state().t_s;
+        if (!f.quiet)
+          std::fprintf(stderr, "autonomy: survey done, waiting %.0f s for contacts\n", f.drain_s);
+      }
+      if (agent.state().t_s - done_at_s >= f.drain_s) break;
+    } else {
+      done_at_s = -1.0;
+    }
+    if (agent.state().t_s >= f.max_duration_s) break;
+  }
+  info.wall_time_s = seconds_since(wall0);
+  info.nav_offset_mean_m = offset_n ? offset_sum / static_cast<double>(offset_n) : 0.0;
+}
+
+// The mission's outcome, on one line.
+void print_result(const autonomy::Agent& agent, const AgentRunInfo& info) {
+  int confirmed = 0;
+  for (const auto& o : agent.objects())
+    confirmed += o.decision.state == autonomy::FinalState::kConfirmed;
+  std::fprintf(stderr,
+               "autonomy: %s after %.0f s of mission (%.1f s wall): %.0f m flown, %.0f m and "
+               "%.0f s on %zu re-looks; %zu objects, %d confirmed; %llu contacts, %llu nav "
+               "frames\n",
+               info.stopped ? "stopped" : "done", agent.state().t_s, info.wall_time_s,
+               agent.travelled_m(), agent.detour_distance_m(), agent.detour_time_s(),
+               agent.relooks().size(), agent.objects().size(), confirmed,
+               static_cast<unsigned long long>(info.contacts_received),
+               static_cast<unsigned long long>(info.nav.frames));
+}
+
 int run_autonomy(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--scenario"},
                          {"--contacts"},
@@ -171,78 +257,26 @@ int run_autonomy(const std::vector<std::string>& argv) {
   ContactListener contacts(contacts_at);
   PosePublisher pose(pose_to, ltp);
   if (!quiet) {
-    std::fprintf(stderr,
-                 "autonomy: survey of (%.0f, %.0f)-(%.0f, %.0f) m, %zu lines %.0f m apart (%.0f "
-                 "m), re-looks %s (margin threshold %.3g, pass range %.0f m), rate %g\n",
-                 setup.area.min.north_m, setup.area.min.east_m, setup.area.max.north_m,
-                 setup.area.max.east_m, survey.size(), spacing_m, info.survey_plan_m,
-                 info.relooks ? "on" : "off", info.threshold, setup.params.relook.pass_range_m,
-                 rate);
-    std::fprintf(stderr, "autonomy: contacts on %s, pose to udp %s, nav from %s ...\n",
-                 contacts.describe().c_str(), net::to_string(pose_to).c_str(), nav_spec->c_str());
+    print_plan(setup, survey, spacing_m, info, rate, contacts, pose_to, *nav_spec);
   }
   // the pose first (the emulator waits for it), then the bus (its server may still be starting)
   pose.publish(agent.state(), unix_now_ns());
   NavListener nav(*nav_spec, ltp, kConnectTimeoutS);
   if (!quiet) std::fprintf(stderr, "autonomy: nav connected (%s)\n", nav.describe().c_str());
 
-  const auto wall0 = Clock::now();
-  const auto period =
-      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / pose_hz));
-  auto next = wall0;
-  double offset_sum = 0.0;
-  std::uint64_t offset_n = 0, last_position_updates = 0;
-  double done_at_s = -1.0;  // mission time the survey ended, < 0 while flying
-  while (!stop_requested()) {
-    next += period;
-    std::this_thread::sleep_until(next);
-    // the model runs at the emulator's rate: mission time = rate x wall time
-    const double target_s = rate * seconds_since(wall0);
-    const NavFix fix = nav.latest();
-    agent.step(target_s - agent.state().t_s, fix.seabed_depth_m);
-    for (const atr::Contact& c : contacts.take())
-      agent.on_contact(c);
-    pose.publish(agent.state(), unix_now_ns());
-    if (fix.position && fix.position_updates != last_position_updates) {
-      last_position_updates = fix.position_updates;
-      const double off = autonomy::distance_m(*fix.position, agent.state().position);
-      offset_sum += off;
-      ++offset_n;
-      info.nav_offset_max_m = std::max(info.nav_offset_max_m, off);
-    }
-    print_events(agent, quiet);
-    // done: wait `drain_s` of mission time for the last contacts (which may ask for re-looks)
-    if (agent.mission_done()) {
-      if (done_at_s < 0) {
-        done_at_s = agent.state().t_s;
-        if (!quiet)
-          std::fprintf(stderr, "autonomy: survey done, waiting %.0f s for contacts\n", drain_s);
-      }
-      if (agent.state().t_s - done_at_s >= drain_s) break;
-    } else {
-      done_at_s = -1.0;
-    }
-    if (agent.state().t_s >= max_duration_s) break;
-  }
+  Flight flight;
+  flight.rate = rate;
+  flight.pose_hz = pose_hz;
+  flight.drain_s = drain_s;
+  flight.max_duration_s = max_duration_s;
+  flight.quiet = quiet;
+  fly(agent, flight, nav, contacts, pose, info);
   info.stopped = stop_requested();
-  info.wall_time_s = seconds_since(wall0);
   info.contacts_received = contacts.received();
   info.contacts_malformed = contacts.malformed();
   info.poses_sent = pose.sent();
   info.nav = nav.latest();
-  info.nav_offset_mean_m = offset_n ? offset_sum / static_cast<double>(offset_n) : 0.0;
-  int confirmed = 0;
-  for (const auto& o : agent.objects())
-    confirmed += o.decision.state == autonomy::FinalState::kConfirmed;
-  std::fprintf(stderr,
-               "autonomy: %s after %.0f s of mission (%.1f s wall): %.0f m flown, %.0f m and "
-               "%.0f s on %zu re-looks; %zu objects, %d confirmed; %llu contacts, %llu nav "
-               "frames\n",
-               info.stopped ? "stopped" : "done", agent.state().t_s, info.wall_time_s,
-               agent.travelled_m(), agent.detour_distance_m(), agent.detour_time_s(),
-               agent.relooks().size(), agent.objects().size(), confirmed,
-               static_cast<unsigned long long>(info.contacts_received),
-               static_cast<unsigned long long>(info.nav.frames));
+  print_result(agent, info);
   if (report) report->write_and_close(agent_report_json(agent, info) + "\n");
   return 0;
 }

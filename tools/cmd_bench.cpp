@@ -261,8 +261,7 @@ void bench_split(const config::Scenario& s) {
 void bench_chips(const config::Scenario& s, int count) {
   double ms[2][2] = {{0, 0}, {0, 0}};
   for (int kind_i = 0; kind_i < 2; ++kind_i) {
-    const render::ChipKind ck =
-        kind_i == 0 ? render::ChipKind::kHighlight : render::ChipKind::kShadow;
+    const chips::ChipKind ck = kind_i == 0 ? chips::ChipKind::kHighlight : chips::ChipKind::kShadow;
     for (int i = 0; i < 2; ++i) {
       render::ChipDatasetSpec spec;
       spec.kind = ck;
@@ -286,7 +285,7 @@ void bench_chips(const config::Scenario& s, int count) {
       const double again_s = seconds_since(t0);
       ms[kind_i][i] = 1e3 * again_s / count;
       json::Writer w;
-      w.begin_object().field("bench", "chips_5cm").field("kind", render::chip_kind_name(ck));
+      w.begin_object().field("bench", "chips_5cm").field("kind", chips::chip_kind_name(ck));
       w.field("renderer", render::renderer_name(kKinds[i])).field("threads", 1);
       w.field("chips", count).field("setup_s", setup_s, 4);
       w.field("ms_per_chip_first", 1e3 * first_s / count, 4);
@@ -295,7 +294,7 @@ void bench_chips(const config::Scenario& s, int count) {
       w.end_object();
       emit(w);
     }
-    emit_ratio("chips_5cm", render::chip_kind_name(ck), ms[kind_i][0], ms[kind_i][1]);
+    emit_ratio("chips_5cm", chips::chip_kind_name(ck), ms[kind_i][0], ms[kind_i][1]);
   }
 }
 

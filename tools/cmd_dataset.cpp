@@ -92,7 +92,7 @@ std::vector<render::DatasetSeabed> parse_seabeds(const std::string& text) {
   return out;
 }
 
-render::ChipLevels parse_levels(const std::string& text) {
+chips::ChipLevels parse_levels(const std::string& text) {
   double lo = 0.0, hi = 0.0;
   char tail = 0;
   if (std::sscanf(text.c_str(), "%lf,%lf%c", &lo, &hi, &tail) != 2 || !(lo < hi) || lo < -200.0 ||
@@ -100,7 +100,7 @@ render::ChipLevels parse_levels(const std::string& text) {
     throw UsageError("--levels-db: '" + text +
                      "' is not MIN,MAX in dB re full scale with -200 <= MIN < MAX <= 100");
   }
-  return render::ChipLevels{lo, hi};
+  return chips::ChipLevels{lo, hi};
 }
 
 double parse_resolution_cm(const std::string& text) {
@@ -139,7 +139,7 @@ std::string csv_fields(const render::ChipImage& c, const render::ChipDatasetSpec
   s += std::string(info.key) + ",";
   s += format_fixed(p.aspect_deg, 3) + ",";
   s += std::string(info.mine_like ? "1" : "0") + ",";
-  s += std::string(render::chip_kind_name(spec.kind)) + ",";
+  s += std::string(chips::chip_kind_name(spec.kind)) + ",";
   s += spec.seabeds[static_cast<std::size_t>(p.seabed)].name + ",";
   s += format_fixed(p.altitude_m, 4) + ",";
   s += format_fixed(p.ground_range_m, 4) + ",";
@@ -193,7 +193,7 @@ void write_dataset_json(const fs::path& path, const render::ChipRenderer& r,
   json::Writer w(true);
   w.begin_object();
   w.field("generator", std::string("sonarloop dataset ") + SONARLOOP_VERSION);
-  w.field("seed", spec.seed).field("kind", render::chip_kind_name(spec.kind));
+  w.field("seed", spec.seed).field("kind", chips::chip_kind_name(spec.kind));
   w.field("count_per_class", static_cast<std::int64_t>(count_per_class));
   w.key("classes").begin_array();
   for (auto t : spec.classes)
@@ -216,15 +216,15 @@ void write_dataset_json(const fs::path& path, const render::ChipRenderer& r,
         .end_object();
   }
   w.end_array();
-  const bool shadow = spec.kind == render::ChipKind::kShadow;
-  w.field("chip_along_track_m", shadow ? render::kShadowChipAlong_m : render::kHighlightChipAlong_m,
+  const bool shadow = spec.kind == chips::ChipKind::kShadow;
+  w.field("chip_along_track_m", shadow ? chips::kShadowChipAlong_m : chips::kHighlightChipAlong_m,
           6);
-  w.field("chip_slant_range_m", shadow ? render::kShadowChipRange_m : render::kHighlightChipRange_m,
+  w.field("chip_slant_range_m", shadow ? chips::kShadowChipRange_m : chips::kHighlightChipRange_m,
           6);
   w.field("altitude_m", std::string(format_fixed(spec.altitude_min_m, 2) + ".." +
                                     format_fixed(spec.altitude_max_m, 2)));
   w.field("ground_range_m",
-          shadow ? format_fixed(render::kShadowGroundRange_m, 2)
+          shadow ? format_fixed(chips::kShadowGroundRange_m, 2)
                  : format_fixed(spec.range_min_m, 2) + ".." + format_fixed(spec.range_max_m, 2));
   w.field("pixel_min_db", spec.levels.min_db, 6).field("pixel_max_db", spec.levels.max_db, 6);
   w.field("pixels",
@@ -247,6 +247,98 @@ void write_dataset_json(const fs::path& path, const render::ChipRenderer& r,
   if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");
 }
 
+// --resolution-cm, repeatable (default 5), in metres; each at most once.
+std::vector<double> parse_resolutions_m(const Args& args) {
+  std::vector<double> resolutions_m;
+  std::vector<std::string> res_text = args.get_all("--resolution-cm");
+  if (res_text.empty()) res_text = {"5"};
+  for (const std::string& t : res_text) {
+    const double cm = parse_resolution_cm(t);
+    for (double r : resolutions_m) {
+      if (format_cm(r) == format_cm(cm / 100.0)) {
+        throw UsageError("--resolution-cm " + t + " is given twice");
+      }
+    }
+    resolutions_m.push_back(cm / 100.0);
+  }
+  return resolutions_m;
+}
+
+// The chip kind, classes, seed, sonar, levels, seabeds and renderer into spec.
+void parse_chip_options(const Args& args, render::ChipDatasetSpec& spec) {
+  const std::string kind = args.get_or("--kind", "highlight");
+  if (kind == "highlight") {
+    spec.kind = chips::ChipKind::kHighlight;
+  } else if (kind == "shadow") {
+    spec.kind = chips::ChipKind::kShadow;
+  } else {
+    throw UsageError("--kind: '" + kind + "' is not 'highlight' or 'shadow'");
+  }
+  spec.classes = parse_classes(args.get_or("--classes", kDefaultClasses));
+  spec.seed = static_cast<std::uint64_t>(
+      args.get_int("--seed", 0, std::numeric_limits<long long>::max()).value_or(0));
+}
+
+// An existing non-empty folder is never overwritten or mixed into.
+void create_new_folder(const fs::path& out_dir) {
+  std::error_code ec;
+  if (fs::exists(out_dir, ec) && !fs::is_empty(out_dir, ec)) {
+    throw std::runtime_error("'" + out_dir.string() +
+                             "' already exists and is not empty: choose a new --out folder (a "
+                             "dataset is never written over or into another)");
+  }
+  fs::create_directories(out_dir);
+}
+
+// The dataset's files: one root per resolution (out_dir itself, or out_dir/res_<R>cm) with its
+// labels.csv, and with several resolutions a labels.csv in out_dir listing them all.
+struct DatasetFiles {
+  std::vector<fs::path> roots;
+  std::vector<std::unique_ptr<CsvFile>> csvs;
+  std::unique_ptr<CsvFile> all_csv;  // every resolution, paths relative to out_dir
+  int digits = 1;                    // of the zero-padded chip index
+  std::set<fs::path> made_dirs;
+};
+
+DatasetFiles open_dataset_files(const fs::path& out_dir, const render::ChipDatasetSpec& spec,
+                                std::uint64_t total) {
+  DatasetFiles files;
+  const bool several = spec.resolutions_m.size() > 1;
+  for (double r : spec.resolutions_m) {
+    files.roots.push_back(several ? out_dir / ("res_" + format_cm(r) + "cm") : out_dir);
+    fs::create_directories(files.roots.back());
+    files.csvs.push_back(std::make_unique<CsvFile>(files.roots.back() / "labels.csv"));
+  }
+  if (several) files.all_csv = std::make_unique<CsvFile>(out_dir / "labels.csv");
+  for (std::uint64_t v = total - 1; v >= 10; v /= 10)
+    ++files.digits;
+  files.digits = std::max(files.digits, kMinIndexDigits);
+  return files;
+}
+
+// One chip: its PNG (written to a dot-file, which chip readers ignore, then renamed), then its
+// labels.csv rows, flushed.
+void write_chip(DatasetFiles& files, const render::ChipImage& c,
+                const render::ChipDatasetSpec& spec) {
+  const std::string cls(targets::target_type_info(c.params.type).key);
+  char name[48];
+  std::snprintf(name, sizeof name, "%0*llu.png", files.digits,
+                static_cast<unsigned long long>(c.params.index));
+  const fs::path& root = files.roots[static_cast<std::size_t>(c.resolution)];
+  const fs::path dir = root / cls;
+  if (files.made_dirs.insert(dir).second) fs::create_directories(dir);
+  const fs::path tmp = dir / (std::string(".") + name + ".tmp");
+  write_chip_label_png(dir, name, c);  // <index>_label.png, before the chip it labels
+  image::write_png_gray8(tmp.string(), c.cols, c.rows, c.pixels);
+  fs::rename(tmp, dir / name);
+  const std::string fields = csv_fields(c, spec) + "," + chip_label_csv_fields(name, c);
+  const std::string rel = cls + "/" + name;
+  files.csvs[static_cast<std::size_t>(c.resolution)]->write_line(rel + "," + fields);
+  if (files.all_csv) {
+    files.all_csv->write_line(fs::path(root.filename() / rel).generic_string() + "," + fields);
+  }
+}
+
 int run_dataset(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--out"},
                          {"--resolution-cm", true, true},
@@ -267,30 +359,9 @@ int run_dataset(const std::vector<std::string>& argv) {
   const fs::path out_dir(*out_arg);
 
   render::ChipDatasetSpec spec;
-  // resolutions
-  std::vector<std::string> res_text = args.get_all("--resolution-cm");
-  if (res_text.empty()) res_text = {"5"};
-  for (const std::string& t : res_text) {
-    const double cm = parse_resolution_cm(t);
-    for (double r : spec.resolutions_m) {
-      if (format_cm(r) == format_cm(cm / 100.0)) {
-        throw UsageError("--resolution-cm " + t + " is given twice");
-      }
-    }
-    spec.resolutions_m.push_back(cm / 100.0);
-  }
+  spec.resolutions_m = parse_resolutions_m(args);
   const long long count = args.get_int("--count", 1, 10'000'000).value_or(kDefaultCountPerClass);
-  const std::string kind = args.get_or("--kind", "highlight");
-  if (kind == "highlight") {
-    spec.kind = render::ChipKind::kHighlight;
-  } else if (kind == "shadow") {
-    spec.kind = render::ChipKind::kShadow;
-  } else {
-    throw UsageError("--kind: '" + kind + "' is not 'highlight' or 'shadow'");
-  }
-  spec.classes = parse_classes(args.get_or("--classes", kDefaultClasses));
-  spec.seed = static_cast<std::uint64_t>(
-      args.get_int("--seed", 0, std::numeric_limits<long long>::max()).value_or(0));
+  parse_chip_options(args, spec);
   const int threads =
       static_cast<int>(args.get_int("--threads", 1, 256).value_or(mpi::default_threads()));
   const std::string sonar_arg = args.get_or("--sonar", std::string(config::kDefaultSonarPreset));
@@ -307,42 +378,15 @@ int run_dataset(const std::vector<std::string>& argv) {
     return serve_dataset(spec, static_cast<std::uint64_t>(count) * spec.classes.size(), threads,
                          [] { return stop_requested(); });
   }
-
-  // an existing non-empty folder is never overwritten or mixed into
-  std::error_code ec;
-  if (fs::exists(out_dir, ec) && !fs::is_empty(out_dir, ec)) {
-    throw std::runtime_error("'" + out_dir.string() +
-                             "' already exists and is not empty: choose a new --out folder (a "
-                             "dataset is never written over or into another)");
-  }
-  fs::create_directories(out_dir);
+  create_new_folder(out_dir);
 
   const auto t0 = std::chrono::steady_clock::now();
   const render::ChipRenderer renderer(spec);
   write_dataset_json(out_dir / "dataset.json", renderer, spec.sonar.name, count);
-
-  // one dataset root per resolution: out_dir itself, or out_dir/res_<R>cm
-  const bool several = spec.resolutions_m.size() > 1;
-  std::vector<fs::path> roots;
-  std::vector<std::unique_ptr<CsvFile>> csvs;
-  for (double r : spec.resolutions_m) {
-    roots.push_back(several ? out_dir / ("res_" + format_cm(r) + "cm") : out_dir);
-    fs::create_directories(roots.back());
-    csvs.push_back(std::make_unique<CsvFile>(roots.back() / "labels.csv"));
-  }
-  std::unique_ptr<CsvFile> all_csv;  // every resolution, paths relative to out_dir
-  if (several) all_csv = std::make_unique<CsvFile>(out_dir / "labels.csv");
-
   const auto total = static_cast<std::uint64_t>(count) * spec.classes.size();
-  int digits = 1;
-  for (std::uint64_t v = total - 1; v >= 10; v /= 10)
-    ++digits;
-  digits = std::max(digits, kMinIndexDigits);
+  DatasetFiles files = open_dataset_files(out_dir, spec, total);
   const std::vector<render::ChipJob> jobs = dataset_jobs(total, spec.resolutions_m.size());
 
-  // each chip: its PNG (written to a dot-file, which chip readers ignore, then renamed), then
-  // its labels.csv rows, flushed
-  std::set<fs::path> made_dirs;
   Progress bar("rendering " + std::to_string(jobs.size()) + " chips",
                static_cast<double>(jobs.size()));
   std::size_t written = 0;
@@ -350,23 +394,7 @@ int run_dataset(const std::vector<std::string>& argv) {
   const std::size_t done = render_chips_on_ranks(
       renderer, jobs, threads,
       [&](const render::ChipImage& c) {
-        const std::string cls(targets::target_type_info(c.params.type).key);
-        char name[48];
-        std::snprintf(name, sizeof name, "%0*llu.png", digits,
-                      static_cast<unsigned long long>(c.params.index));
-        const fs::path& root = roots[static_cast<std::size_t>(c.resolution)];
-        const fs::path dir = root / cls;
-        if (made_dirs.insert(dir).second) fs::create_directories(dir);
-        const fs::path tmp = dir / (std::string(".") + name + ".tmp");
-        write_chip_label_png(dir, name, c);  // <index>_label.png, before the chip it labels
-        image::write_png_gray8(tmp.string(), c.cols, c.rows, c.pixels);
-        fs::rename(tmp, dir / name);
-        const std::string fields = csv_fields(c, spec) + "," + chip_label_csv_fields(name, c);
-        const std::string rel = cls + "/" + name;
-        csvs[static_cast<std::size_t>(c.resolution)]->write_line(rel + "," + fields);
-        if (all_csv) {
-          all_csv->write_line(fs::path(root.filename() / rel).generic_string() + "," + fields);
-        }
+        write_chip(files, c, spec);
         ++written;
         bar.update(static_cast<double>(written));
       },

@@ -119,6 +119,133 @@ std::string loopback(int port) {
   return "127.0.0.1:" + std::to_string(port);
 }
 
+// The mission's ports on 127.0.0.1, each free when chosen.
+struct Ports {
+  int sonar = free_port(SOCK_DGRAM);     // emulator -> onboard: XTF datagrams
+  int contacts = free_port(SOCK_DGRAM);  // onboard -> agent: contact reports
+  int pose = free_port(SOCK_DGRAM);      // agent -> emulator: the vehicle's pose
+  int can = free_port(SOCK_STREAM);      // emulator -> agent: navigation (socketcand)
+};
+
+// Where the children's logs and files go (--out).
+struct Logs {
+  std::string dir;
+  std::string path(const std::string& name) const {
+    return (std::filesystem::path(dir) / name).string();
+  }
+};
+
+std::vector<std::string> onboard_args(const std::string& model, const Ports& ports,
+                                      const Logs& logs,
+                                      const std::vector<std::string>& scenario_args) {
+  std::vector<std::string> onboard = {"onboard",
+                                      "--listen",
+                                      loopback(ports.sonar),
+                                      "--model",
+                                      model,
+                                      "--contacts",
+                                      "udp:" + loopback(ports.contacts),
+                                      "--stats-json",
+                                      logs.path("onboard_stats.json")};
+  onboard.insert(onboard.end(), scenario_args.begin(), scenario_args.end());
+  return onboard;
+}
+
+std::vector<std::string> emulator_args(const std::optional<std::string>& scenario_path,
+                                       const std::string& rate, const Ports& ports,
+                                       const Logs& logs) {
+  std::vector<std::string> emulator = {"run"};
+  if (scenario_path) emulator.push_back(*scenario_path);
+  for (const std::string& a :
+       {std::string("--udp"), loopback(ports.sonar), std::string("--can"),
+        "socketcand:" + loopback(ports.can), std::string("--pose-from"),
+        "udp:" + loopback(ports.pose), std::string("--rate"), rate, std::string("--stats-every"),
+        std::string("10"), std::string("--stats-json"), logs.path("emulator_stats.json")})
+    emulator.push_back(a);
+  return emulator;
+}
+
+// The agent's arguments: the wiring, then the mission's options that are the agent's.
+std::vector<std::string> agent_args(const Args& args, const std::string& rate, const Ports& ports,
+                                    const Logs& logs,
+                                    const std::vector<std::string>& scenario_args) {
+  std::vector<std::string> agent = {"autonomy",
+                                    "--contacts",
+                                    "udp:" + loopback(ports.contacts),
+                                    "--nav",
+                                    "socketcand:" + loopback(ports.can),
+                                    "--pose-to",
+                                    "udp:" + loopback(ports.pose),
+                                    "--rate",
+                                    rate,
+                                    "--report",
+                                    logs.path("agent.json")};
+  agent.insert(agent.end(), scenario_args.begin(), scenario_args.end());
+  for (const char* o : {"--threshold", "--line-spacing", "--pass-range", "--max-duration", "--area",
+                        "--area-margin", "--max-relooks"}) {
+    if (const auto v = args.get(o)) {
+      agent.push_back(o);
+      agent.push_back(*v);
+    }
+  }
+  if (args.has("--no-relook")) agent.push_back("--no-relook");
+  if (args.has("--relook-all")) agent.push_back("--relook-all");
+  return agent;
+}
+
+// Waits for the agent (children[2]) to end. A child that ends early, or a stop request, stops the
+// agent (SIGINT, once); progress every 10 s unless quiet. Returns what failed ("" if nothing).
+std::string supervise(std::vector<Child>& children, const Logs& logs, bool quiet) {
+  Child& agent_child = children[2];
+  const auto t0 = std::chrono::steady_clock::now();
+  auto next_progress = t0 + std::chrono::seconds(10);
+  bool forwarded = false;
+  std::string failure;
+  for (;;) {
+    std::this_thread::sleep_for(kPoll);
+    for (Child& c : children)
+      reap(c);
+    if (!agent_child.running()) break;
+    for (const Child& c : children) {
+      if (&c != &agent_child && !c.running() && failure.empty()) {
+        failure = c.name + " ended early (status " + std::to_string(c.status) + ", see " +
+                  logs.path(c.name + ".log") + ")";
+      }
+    }
+    if (!failure.empty() && !forwarded) {
+      std::fprintf(stderr, "mission: %s: stopping\n", failure.c_str());
+      ::kill(agent_child.pid, SIGINT);
+      forwarded = true;
+    }
+    if (stop_requested() && !forwarded) {
+      std::fprintf(stderr, "mission: stop requested: stopping the agent, then the others\n");
+      ::kill(agent_child.pid, SIGINT);
+      forwarded = true;
+    }
+    if (!quiet && std::chrono::steady_clock::now() >= next_progress) {
+      next_progress += std::chrono::seconds(10);
+      std::fprintf(stderr, "mission: %.0f s wall ...\n",
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+  }
+  return failure;
+}
+
+// The report's "run" object: how the mission was run.
+std::string run_settings_json(const Args& args, const config::Scenario& scenario,
+                              const std::string& rate, const std::string& model,
+                              const std::string& failure) {
+  json::Writer settings;
+  settings.begin_object();
+  settings.field("scenario", scenario.scene.name).field("rate", rate);
+  settings.field("relooks", !args.has("--no-relook"));
+  settings.field("relook_all", args.has("--relook-all"));
+  settings.field("model", model).field("stopped", stop_requested() || !failure.empty());
+  settings.field("failure", failure);
+  settings.end_object();
+  return settings.str();
+}
+
 int run_mission(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--model"},
                          {"--rate"},
@@ -144,122 +271,47 @@ int run_mission(const std::vector<std::string>& argv) {
   const std::string rate = args.get_or("--rate", "10");
   args.get_double("--rate", 0.01, 1000.0);  // validated here, used by the children
   const std::string report_path = args.get_or("--report", "out/mission.json");
-  const std::string out_dir = args.get_or(
-      "--out", (std::filesystem::path(report_path).parent_path() / "mission_logs").string());
-  std::filesystem::create_directories(out_dir);
+  const Logs logs{args.get_or(
+      "--out", (std::filesystem::path(report_path).parent_path() / "mission_logs").string())};
+  std::filesystem::create_directories(logs.dir);
   OutputFile report("--report", report_path);  // opened now: fails before the run
   const bool quiet = args.has("--quiet");
 
-  const int sonar_port = free_port(SOCK_DGRAM), contacts_port = free_port(SOCK_DGRAM);
-  const int pose_port = free_port(SOCK_DGRAM), can_port = free_port(SOCK_STREAM);
-  const auto log = [&](const char* name) {
-    return (std::filesystem::path(out_dir) / name).string();
-  };
+  // set up: the three children's command lines, wired on loopback
+  const Ports ports;
   std::vector<std::string> scenario_args;
   if (scenario_path) scenario_args = {"--scenario", *scenario_path};
+  const std::vector<std::string> onboard = onboard_args(*model, ports, logs, scenario_args);
+  const std::vector<std::string> emulator = emulator_args(scenario_path, rate, ports, logs);
+  const std::vector<std::string> agent = agent_args(args, rate, ports, logs, scenario_args);
 
-  std::vector<std::string> onboard = {"onboard",
-                                      "--listen",
-                                      loopback(sonar_port),
-                                      "--model",
-                                      *model,
-                                      "--contacts",
-                                      "udp:" + loopback(contacts_port),
-                                      "--stats-json",
-                                      log("onboard_stats.json")};
-  onboard.insert(onboard.end(), scenario_args.begin(), scenario_args.end());
-  std::vector<std::string> emulator = {"run"};
-  if (scenario_path) emulator.push_back(*scenario_path);
-  for (const std::string& a :
-       {std::string("--udp"), loopback(sonar_port), std::string("--can"),
-        "socketcand:" + loopback(can_port), std::string("--pose-from"),
-        "udp:" + loopback(pose_port), std::string("--rate"), rate, std::string("--stats-every"),
-        std::string("10"), std::string("--stats-json"), log("emulator_stats.json")})
-    emulator.push_back(a);
-  std::vector<std::string> agent = {"autonomy",
-                                    "--contacts",
-                                    "udp:" + loopback(contacts_port),
-                                    "--nav",
-                                    "socketcand:" + loopback(can_port),
-                                    "--pose-to",
-                                    "udp:" + loopback(pose_port),
-                                    "--rate",
-                                    rate,
-                                    "--report",
-                                    log("agent.json")};
-  agent.insert(agent.end(), scenario_args.begin(), scenario_args.end());
-  for (const char* o : {"--threshold", "--line-spacing", "--pass-range", "--max-duration", "--area",
-                        "--area-margin", "--max-relooks"}) {
-    if (const auto v = args.get(o)) {
-      agent.push_back(o);
-      agent.push_back(*v);
-    }
-  }
-  if (args.has("--no-relook")) agent.push_back("--no-relook");
-  if (args.has("--relook-all")) agent.push_back("--relook-all");
-
+  // run: until the agent ends, then stop the others
   install_stop_flag();
   std::fprintf(stderr,
                "mission: scenario '%s', rate %s, re-looks %s; logs in %s (onboard.log, "
                "emulator.log, agent.log)\n",
                scenario.scene.name.c_str(), rate.c_str(), args.has("--no-relook") ? "off" : "on",
-               out_dir.c_str());
+               logs.dir.c_str());
   std::vector<Child> children;
-  children.push_back(spawn("onboard", onboard, log("onboard.log")));
-  children.push_back(spawn("emulator", emulator, log("emulator.log")));
-  children.push_back(spawn("agent", agent, log("agent.log")));
-  Child& agent_child = children[2];
-  const auto t0 = std::chrono::steady_clock::now();
-  auto next_progress = t0 + std::chrono::seconds(10);
-  bool forwarded = false;
-  std::string failure;
-  for (;;) {
-    std::this_thread::sleep_for(kPoll);
-    for (Child& c : children)
-      reap(c);
-    if (!agent_child.running()) break;
-    for (const Child& c : children) {
-      if (&c != &agent_child && !c.running() && failure.empty()) {
-        failure = c.name + " ended early (status " + std::to_string(c.status) + ", see " +
-                  log((c.name + ".log").c_str()) + ")";
-      }
-    }
-    if (!failure.empty() && !forwarded) {
-      std::fprintf(stderr, "mission: %s: stopping\n", failure.c_str());
-      ::kill(agent_child.pid, SIGINT);
-      forwarded = true;
-    }
-    if (stop_requested() && !forwarded) {
-      std::fprintf(stderr, "mission: stop requested: stopping the agent, then the others\n");
-      ::kill(agent_child.pid, SIGINT);
-      forwarded = true;
-    }
-    if (!quiet && std::chrono::steady_clock::now() >= next_progress) {
-      next_progress += std::chrono::seconds(10);
-      std::fprintf(stderr, "mission: %.0f s wall ...\n",
-                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    }
-  }
+  children.push_back(spawn("onboard", onboard, logs.path("onboard.log")));
+  children.push_back(spawn("emulator", emulator, logs.path("emulator.log")));
+  children.push_back(spawn("agent", agent, logs.path("agent.log")));
+  const std::string failure = supervise(children, logs, quiet);
   for (Child& c : children)
     stop(c, kStopGraceS);
-  const std::string agent_report = read_file(log("agent.json"));
+
+  // report
+  const std::string agent_report = read_file(logs.path("agent.json"));
   if (agent_report.empty()) {
     std::fprintf(stderr, "mission: the agent wrote no report (status %d, see %s)\n",
-                 agent_child.status, log("agent.log").c_str());
+                 children[2].status, logs.path("agent.log").c_str());
     report.write_and_close("{\"error\": \"the agent wrote no report\"}\n");
     return 1;
   }
-  json::Writer settings;
-  settings.begin_object();
-  settings.field("scenario", scenario.scene.name).field("rate", rate);
-  settings.field("relooks", !args.has("--no-relook"));
-  settings.field("relook_all", args.has("--relook-all"));
-  settings.field("model", *model).field("stopped", stop_requested() || !failure.empty());
-  settings.field("failure", failure);
-  settings.end_object();
   MissionSummary s;
-  report.write_and_close(
-      mission_report_json(agent_report, scenario, "\"run\": " + settings.str(), &s));
+  report.write_and_close(mission_report_json(
+      agent_report, scenario,
+      "\"run\": " + run_settings_json(args, scenario, rate, *model, failure), &s));
   print_mission_summary(s);
   std::fprintf(stderr, "mission: report %s\n", report_path.c_str());
   return failure.empty() ? 0 : 1;

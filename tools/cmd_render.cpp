@@ -10,11 +10,11 @@
 
 #include <unistd.h>
 
+#include "common/geodesy.h"
 #include "drivers/json/json_writer.h"
 #include "drivers/xtf/xtf_codec.h"
 #include "drivers/xtf/xtf_file.h"
 #include "emulator/xtf_ping.h"
-#include "sim/core/geodesy.h"
 #include "sim/render/quantise.h"
 #include "sim/render/track_renderer.h"
 #include "sim/scene/scene.h"
@@ -23,6 +23,7 @@
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
 #include "tools/progress.h"
+#include "tools/render_truth.h"
 #include "tools/scenario_source.h"
 #include "tools/waterfall.h"
 #include "tools/waterfall_annotations.h"
@@ -102,19 +103,98 @@ Track default_track(const scene::Scene& s) {
   return Track{Vec2(std::max(lo.x(), n_min - 20.0), e), Vec2(std::min(hi.x(), n_max + 20.0), e)};
 }
 
-struct TargetTruth {
-  int side = -1;
-  int ping_first = -1, ping_last = -1;
-  int sample_first = -1, sample_last = -1;
-  int shadow_ping_first = -1, shadow_ping_last = -1;
-  int shadow_first = -1, shadow_last = -1;
-  double energy = 0.0, energy_ping = 0.0, energy_sample = 0.0;  // for the energy centroid
+// --resolution-cm R: isotropic pixels; range bin, along-track resolution and ping spacing all
+// equal R (no pulse or chirp to widen the range bin).
+void apply_resolution(const Args& args, render::SonarDesc& sd) {
+  if (const auto r = args.get_double("--resolution-cm", 1.0, 100.0)) {
+    sd.bin_size_m = *r / 100.0;
+    sd.along_track_resolution_m = *r / 100.0;
+    sd.pulse_length_s = 0.0;
+    sd.chirp_bandwidth_hz = 0.0;
+  }
+}
+
+// One ping every `spacing` m along the line, at constant depth, heading along it.
+std::vector<Pose> line_poses(const Track& track, std::size_t n_pings, double spacing,
+                             double depth_m) {
+  const Vec2 dir = (track.end - track.start).normalized();
+  std::vector<Pose> poses(n_pings);
+  for (std::size_t k = 0; k < n_pings; ++k) {
+    const Vec2 p = track.start + dir * (static_cast<double>(k) * spacing);
+    poses[k].position_W = Vec3(p.x(), p.y(), depth_m);
+    poses[k].yaw = std::atan2(dir.y(), dir.x());
+  }
+  return poses;
+}
+
+// Ping k's navigation for its XTF packet: times from kEpochUtcNs at the ping period.
+emulator::PingNav ping_nav(std::size_t k, const Pose& pose, const render::PingLines& lines,
+                           const render::SonarSetup& setup, const LocalTangentPlane& ltp,
+                           double speed_m_s) {
+  emulator::PingNav nav;
+  nav.time_utc_ns =
+      kEpochUtcNs +
+      static_cast<std::int64_t>(std::llround(static_cast<double>(k) * setup.ping_period_s * 1e9));
+  nav.sensor = ltp.to_geodetic(pose.position_W.x(), pose.position_W.y());
+  nav.heading_deg = heading_deg_from_yaw(pose.yaw);
+  nav.depth_m = pose.position_W.z();
+  nav.altitude_m = lines.altitude_m;
+  nav.speed_m_s = speed_m_s;
+  nav.ping_number = static_cast<std::uint32_t>(k);
+  return nav;
+}
+
+// What the line's images and truth are made of, filled ping by ping.
+struct LineImages {
+  WaterfallData wf;
+  std::vector<std::vector<render::TargetTrace>> traces_by_ping;  // to tell the targets' boxes apart
+  std::vector<TargetTruth> truth;                                // per target
 };
 
-void extend(int& lo, int& hi, int v) {
-  if (v < 0) return;
-  if (lo < 0 || v < lo) lo = v;
-  if (hi < 0 || v > hi) hi = v;
+LineImages make_line_images(std::size_t n_pings, int bins, double bin_size_m, std::size_t targets) {
+  LineImages li;
+  li.wf.bins = bins;
+  li.wf.bin_size_m = bin_size_m;
+  li.wf.amplitude.resize(n_pings * 2 * static_cast<std::size_t>(bins));
+  li.wf.altitude_m.resize(n_pings);
+  li.wf.label.resize(li.wf.amplitude.size());
+  li.traces_by_ping.resize(n_pings);
+  li.truth.resize(targets);
+  return li;
+}
+
+// Ping k into the waterfall (relative amplitude, labels laid out as the amplitudes) and the truth.
+void add_ping(LineImages& li, std::size_t k, const render::SonarSetup& setup, double bin_size_m,
+              const render::PingLines& lines, std::span<const render::TargetTrace> traces) {
+  WaterfallData& wf = li.wf;
+  float* row = wf.amplitude.data() + k * 2 * static_cast<std::size_t>(setup.bins);
+  for (int b = 0; b < setup.bins; ++b) {
+    const double r = (b + 0.5) * bin_size_m;
+    row[b] = static_cast<float>(
+        render::relative_amplitude(setup, lines.port[static_cast<std::size_t>(b)], r));
+    row[setup.bins + b] = static_cast<float>(
+        render::relative_amplitude(setup, lines.stbd[static_cast<std::size_t>(b)], r));
+  }
+  wf.altitude_m[k] = lines.altitude_m;
+  std::uint8_t* label_row = wf.label.data() + k * 2 * static_cast<std::size_t>(setup.bins);
+  std::copy(lines.port_label.begin(), lines.port_label.end(), label_row);
+  std::copy(lines.stbd_label.begin(), lines.stbd_label.end(), label_row + setup.bins);
+  li.traces_by_ping[k].assign(traces.begin(), traces.end());
+  add_ping_traces(li.truth, k, traces);
+}
+
+// The slant- and ground-range waterfalls, the label image and their COCO annotations.
+void write_images(const std::filesystem::path& dir_out, const LineImages& li,
+                  const scene::Scene& sc) {
+  write_waterfall_png((dir_out / "waterfall.png").string(), li.wf);
+  write_ground_waterfall_png((dir_out / "waterfall_ground.png").string(), li.wf);
+  write_label_png((dir_out / "labels.png").string(), li.wf);
+  std::vector<AnnotatedTarget> annotated;
+  for (const auto& pt : sc.targets())
+    annotated.push_back(AnnotatedTarget{pt.desc.name, pt.desc.type});
+  write_coco_annotations((dir_out / "annotations.json").string(), li.wf,
+                         label_boxes(li.wf, li.traces_by_ping), annotated, "waterfall.png",
+                         "labels.png");
 }
 
 int run_render(const std::vector<std::string>& argv) {
@@ -131,13 +211,7 @@ int run_render(const std::vector<std::string>& argv) {
   config::Scenario scenario = load_scenario_or_default(
       args.positionals().empty() ? std::nullopt : std::optional(args.positionals()[0]));
   render::SonarDesc& sd = scenario.sonar;
-  if (const auto r = args.get_double("--resolution-cm", 1.0, 100.0)) {
-    // isotropic pixels: range bin, along-track resolution and ping spacing all equal R
-    sd.bin_size_m = *r / 100.0;
-    sd.along_track_resolution_m = *r / 100.0;
-    sd.pulse_length_s = 0.0;
-    sd.chirp_bandwidth_hz = 0.0;
-  }
+  apply_resolution(args, sd);
   const scene::Scene sc(scenario.scene);
   const render::SonarSetup setup = render::make_sonar_setup(sd, scenario.scene.water);
   const auto renderer_ptr = render::make_ping_renderer(renderer_option(args), setup);
@@ -150,16 +224,11 @@ int run_render(const std::vector<std::string>& argv) {
   const double spacing = sd.along_track == render::AlongTrackModel::kStrip
                              ? setup.along_track_resolution_m
                              : sd.bin_size_m;
-  const Vec2 dir = (track.end - track.start).normalized();
   const double length = (track.end - track.start).norm();
   check_track_memory(args.get("--track").value_or("(default)"), length, spacing, setup.bins);
   const auto n_pings = static_cast<std::size_t>(std::floor(length / spacing)) + 1;
-  std::vector<Pose> poses(n_pings);
-  for (std::size_t k = 0; k < n_pings; ++k) {
-    const Vec2 p = track.start + dir * (static_cast<double>(k) * spacing);
-    poses[k].position_W = Vec3(p.x(), p.y(), scenario.scene.water.depth_m - altitude);
-    poses[k].yaw = std::atan2(dir.y(), dir.x());
-  }
+  const std::vector<Pose> poses =
+      line_poses(track, n_pings, spacing, scenario.scene.water.depth_m - altitude);
   const double speed_m_s = spacing / setup.ping_period_s;
 
   namespace fs = std::filesystem;
@@ -170,17 +239,10 @@ int run_render(const std::vector<std::string>& argv) {
   xtf::XtfWriter writer((dir_out / "pings.xtf").string(), header);
   const LocalTangentPlane ltp(
       GeoPoint{scenario.scene.origin.latitude_deg, scenario.scene.origin.longitude_deg});
-
-  WaterfallData wf;
-  wf.bins = setup.bins;
-  wf.bin_size_m = sd.bin_size_m;
-  wf.amplitude.resize(n_pings * 2 * static_cast<std::size_t>(setup.bins));
-  wf.altitude_m.resize(n_pings);
-  wf.label.resize(wf.amplitude.size());
-  std::vector<std::vector<render::TargetTrace>> traces_by_ping(n_pings);
-  std::vector<TargetTruth> truth(sc.targets().size());
+  LineImages images = make_line_images(n_pings, setup.bins, sd.bin_size_m, sc.targets().size());
   xtf::XtfPing packet;
 
+  // render: each ping to pings.xtf, the waterfall and the truth
   render::TrackRenderOptions opt;
   opt.ping.truth = true;
   opt.ping.labels = true;
@@ -191,130 +253,35 @@ int run_render(const std::vector<std::string>& argv) {
       sc, renderer, poses, scenario.scene.seed, opt,
       [&](std::size_t k, const render::PingLines& lines,
           std::span<const render::TargetTrace> traces) {
-        // XTF packet
-        emulator::PingNav nav;
-        nav.time_utc_ns = kEpochUtcNs + static_cast<std::int64_t>(std::llround(
-                                            static_cast<double>(k) * setup.ping_period_s * 1e9));
-        nav.sensor = ltp.to_geodetic(poses[k].position_W.x(), poses[k].position_W.y());
-        nav.heading_deg = heading_deg_from_yaw(poses[k].yaw);
-        nav.depth_m = poses[k].position_W.z();
-        nav.altitude_m = lines.altitude_m;
-        nav.speed_m_s = speed_m_s;
-        nav.ping_number = static_cast<std::uint32_t>(k);
-        emulator::make_xtf_ping(setup, header, lines, nav, packet);
+        emulator::make_xtf_ping(setup, header, lines,
+                                ping_nav(k, poses[k], lines, setup, ltp, speed_m_s), packet);
         writer.write_ping(packet);
-        // waterfall (relative amplitude) and truth
-        float* row = wf.amplitude.data() + k * 2 * static_cast<std::size_t>(setup.bins);
-        for (int b = 0; b < setup.bins; ++b) {
-          const double r = (b + 0.5) * sd.bin_size_m;
-          row[b] = static_cast<float>(
-              render::relative_amplitude(setup, lines.port[static_cast<std::size_t>(b)], r));
-          row[setup.bins + b] = static_cast<float>(
-              render::relative_amplitude(setup, lines.stbd[static_cast<std::size_t>(b)], r));
-        }
-        wf.altitude_m[k] = lines.altitude_m;
-        // labels, laid out as the amplitudes; the traces, to tell the targets' boxes apart
-        std::uint8_t* label_row = wf.label.data() + k * 2 * static_cast<std::size_t>(setup.bins);
-        std::copy(lines.port_label.begin(), lines.port_label.end(), label_row);
-        std::copy(lines.stbd_label.begin(), lines.stbd_label.end(), label_row + setup.bins);
-        traces_by_ping[k].assign(traces.begin(), traces.end());
-        for (const auto& tr : traces) {
-          TargetTruth& t = truth[static_cast<std::size_t>(tr.target)];
-          t.side = tr.side;
-          const int p = static_cast<int>(k);
-          if (tr.highlight_first >= 0) {
-            extend(t.ping_first, t.ping_last, p);
-            extend(t.sample_first, t.sample_last, tr.highlight_first);
-            extend(t.sample_first, t.sample_last, tr.highlight_last);
-            t.energy += tr.energy;
-            t.energy_ping += tr.energy * p;
-            t.energy_sample += tr.energy * 0.5 * (tr.highlight_first + tr.highlight_last);
-          }
-          if (tr.shadow_first >= 0) {
-            extend(t.shadow_ping_first, t.shadow_ping_last, p);
-            extend(t.shadow_first, t.shadow_last, tr.shadow_first);
-            extend(t.shadow_first, t.shadow_last, tr.shadow_last);
-          }
-        }
+        add_ping(images, k, setup, sd.bin_size_m, lines, traces);
       },
       [&](double f) { bar.update(f); });
   bar.finish();
   writer.close();
   const double render_s = seconds_since(t0);
 
-  write_waterfall_png((dir_out / "waterfall.png").string(), wf);
-  write_ground_waterfall_png((dir_out / "waterfall_ground.png").string(), wf);
-  write_label_png((dir_out / "labels.png").string(), wf);
-  std::vector<AnnotatedTarget> annotated;
-  for (const auto& pt : sc.targets())
-    annotated.push_back(AnnotatedTarget{pt.desc.name, pt.desc.type});
-  write_coco_annotations((dir_out / "annotations.json").string(), wf,
-                         label_boxes(wf, traces_by_ping), annotated, "waterfall.png", "labels.png");
-
-  json::Writer w(true);
-  w.begin_object().field("scenario", scenario.scene.name).field("seed", scenario.scene.seed);
-  w.field("sonar", sd.name);
-  w.field("pings", static_cast<std::uint64_t>(n_pings)).field("bins_per_side", setup.bins);
-  w.field("bin_size_m", sd.bin_size_m)
-      .field("ping_spacing_m", spacing)
-      .field("altitude_m", altitude);
-  w.field("frame",
-          "track_m and position_m are [north, east] in metres from the scenario origin (the frame "
-          "of scene.json and of the onboard consumer's contacts, north_m / east_m)");
-  w.key("origin")
-      .begin_object()
-      .field("latitude_deg", scenario.scene.origin.latitude_deg, 9)
-      .field("longitude_deg", scenario.scene.origin.longitude_deg, 9)
-      .end_object();
-  w.key("track_m").begin_array();
-  w.begin_array().value(track.start.x()).value(track.start.y()).end_array();
-  w.begin_array().value(track.end.x()).value(track.end.y()).end_array();
-  w.end_array();
-  w.field(
-      "indexing",
-      "ping = XTF PingNumber (0 = first, at track start); sample = slant-range bin of that side "
-      "counted from nadir (bin k covers [k, k+1) * bin_size_m); in waterfall.png a port sample "
-      "is at column bins-1-sample, a starboard one at bins+sample, and ping p at row pings-1-p");
-  w.key("targets").begin_array();
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    const auto& t = truth[i];
-    const auto& pt = sc.targets()[i];
-    w.begin_object()
-        .field("name", pt.desc.name)
-        .field("type", std::string(targets::target_type_info(pt.desc.type).key));
-    w.key("position_m")
-        .begin_array()
-        .value(pt.desc.position_m.x())
-        .value(pt.desc.position_m.y())
-        .end_array();
-    w.field("seen", t.ping_first >= 0);
-    if (t.ping_first >= 0) {
-      w.field("side", t.side == 0 ? "port" : "starboard");
-      w.key("highlight")
-          .begin_object()
-          .field("ping_first", t.ping_first)
-          .field("ping_last", t.ping_last)
-          .field("sample_first", t.sample_first)
-          .field("sample_last", t.sample_last)
-          .field("centroid_ping", t.energy_ping / t.energy, 6)
-          .field("centroid_sample", t.energy_sample / t.energy, 6)
-          .end_object();
-      w.key("shadow").begin_object();
-      if (t.shadow_first >= 0) {
-        w.field("ping_first", t.shadow_ping_first)
-            .field("ping_last", t.shadow_ping_last)
-            .field("sample_first", t.shadow_first)
-            .field("sample_last", t.shadow_last);
-      }
-      w.end_object();
-    }
-    w.end_object();
-  }
-  w.end_array();
-  w.field("renderer", render::renderer_name(renderer.kind()));
-  w.field("render_s", render_s, 4).field("threads", threads);
-  w.end_object();
-  std::ofstream(dir_out / "truth.json") << w.str() << '\n';
+  // report: the images, truth.json and a line on stdout
+  write_images(dir_out, images, sc);
+  RenderedLine line;
+  line.scenario = scenario.scene.name;
+  line.seed = scenario.scene.seed;
+  line.latitude_deg = scenario.scene.origin.latitude_deg;
+  line.longitude_deg = scenario.scene.origin.longitude_deg;
+  line.sonar = sd.name;
+  line.pings = n_pings;
+  line.bins_per_side = setup.bins;
+  line.bin_size_m = sd.bin_size_m;
+  line.ping_spacing_m = spacing;
+  line.altitude_m = altitude;
+  line.track_start = track.start;
+  line.track_end = track.end;
+  line.renderer = render::renderer_name(renderer.kind());
+  line.render_s = render_s;
+  line.threads = threads;
+  write_render_truth_json((dir_out / "truth.json").string(), line, sc, images.truth);
   std::printf(
       "rendered %zu pings x 2 x %d bins at %.3g m in %.2f s (%s renderer, %d threads): "
       "%s\n",

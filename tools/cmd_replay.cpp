@@ -16,6 +16,7 @@
 #include "drivers/can/socketcand_server.h"
 #include "drivers/net/host_port.h"
 #include "drivers/net/udp_sender.h"
+#include "emulator/pacer.h"
 #include "emulator/replay.h"
 #include "tools/args.h"
 #include "tools/commands.h"
@@ -116,7 +117,7 @@ void print_summary(const std::string& what, const emulator::ReplaySummary& s,
 }
 
 int replay_xtf_file(const std::string& path, const Args& args,
-                    const emulator::ReplayOptions& options, emulator::ReplayClock& clock) {
+                    const emulator::ReplayOptions& options, emulator::Clock& clock) {
   const auto udp = args.get("--udp");
   if (!udp) throw UsageError("an XTF recording replays to --udp HOST:PORT");
   if (args.has("--can")) throw UsageError("--can is for candump logs; XTF replays to --udp");
@@ -137,7 +138,7 @@ int replay_xtf_file(const std::string& path, const Args& args,
 }
 
 int replay_candump_file(const std::string& path, const Args& args,
-                        const emulator::ReplayOptions& options, emulator::ReplayClock& clock) {
+                        const emulator::ReplayOptions& options, emulator::Clock& clock) {
   if (args.has("--udp"))
     throw UsageError("--udp is for XTF recordings; a candump log replays to --can SPEC");
   if (args.has("--header-every")) throw UsageError("--header-every is for XTF recordings");
@@ -224,7 +225,7 @@ int run_replay(const std::vector<std::string>& argv) {
   install_stop_handler();
 
   if (!std::filesystem::exists(path)) throw std::runtime_error("'" + path + "': no such file");
-  emulator::MonotonicReplayClock clock;
+  emulator::MonotonicClock clock;
   return file_kind(path) == FileKind::kXtf ? replay_xtf_file(path, args, options, clock)
                                            : replay_candump_file(path, args, options, clock);
 }

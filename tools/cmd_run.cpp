@@ -18,76 +18,12 @@
 #include "tools/commands.h"
 #include "tools/onboard_output.h"
 #include "tools/output_file.h"
+#include "tools/run_report.h"
 #include "tools/scenario_source.h"
 #include "tools/web_view.h"
 
 namespace sonarloop::tools {
 namespace {
-
-double ms(double ns) {
-  return ns * 1e-6;
-}
-
-void print_final(const emulator::RunStats& s, const char* how) {
-  std::fprintf(stderr, "sonarloop run: %s after %.2f s of simulation in %.2f s (rate %s)\n", how,
-               s.sim_time_s, s.wall_time_s, s.rate.c_str());
-  std::fprintf(stderr,
-               "  pings: %llu sent, %llu deadline misses (%llu late > %.0f ms, %llu dropped)",
-               static_cast<unsigned long long>(s.pings_sent),
-               static_cast<unsigned long long>(s.deadline_misses()),
-               static_cast<unsigned long long>(s.pings_late),
-               ms(static_cast<double>(emulator::kDeadlineToleranceNs)),
-               static_cast<unsigned long long>(s.pings_dropped));
-  if (s.pings_stale || s.stale_episodes) {
-    std::fprintf(stderr, ", %llu not emitted (stale pose, %llu episodes)",
-                 static_cast<unsigned long long>(s.pings_stale),
-                 static_cast<unsigned long long>(s.stale_episodes));
-  }
-  std::fprintf(stderr, "\n");
-  if (s.ping_lateness.count()) {
-    std::fprintf(stderr,
-                 "  lateness (send deadline -> datagram sent): p50 %.3f ms, p99 %.3f ms, max %.3f "
-                 "ms\n",
-                 ms(s.ping_lateness.quantile_ns(0.5)), ms(s.ping_lateness.quantile_ns(0.99)),
-                 ms(static_cast<double>(s.ping_lateness.max_ns())));
-    std::fprintf(stderr,
-                 "  latency (ping time -> datagram sent, incl. the %.1f ms receive window): p50 "
-                 "%.3f ms, p99 %.3f ms, max %.3f ms\n",
-                 s.send_delay_s * 1e3, ms(s.ping_latency.quantile_ns(0.5)),
-                 ms(s.ping_latency.quantile_ns(0.99)),
-                 ms(static_cast<double>(s.ping_latency.max_ns())));
-  }
-  if (s.wall_time_s > 0) {
-    std::fprintf(stderr, "  throughput: %.1f pings/s (%.2fx real time)\n",
-                 static_cast<double>(s.pings_sent) / s.wall_time_s, s.sim_time_s / s.wall_time_s);
-  }
-  std::fprintf(stderr, "  nav: %llu frames in %llu samples, %llu skipped, %llu withheld",
-               static_cast<unsigned long long>(s.nav_frames),
-               static_cast<unsigned long long>(s.nav_samples),
-               static_cast<unsigned long long>(s.nav_frames_skipped),
-               static_cast<unsigned long long>(s.nav_frames_withheld));
-  if (s.nav_lateness.count()) {
-    std::fprintf(stderr, "; lateness p50 %.3f ms, p99 %.3f ms, max %.3f ms",
-                 ms(s.nav_lateness.quantile_ns(0.5)), ms(s.nav_lateness.quantile_ns(0.99)),
-                 ms(static_cast<double>(s.nav_lateness.max_ns())));
-  }
-  std::fprintf(stderr, "\n");
-  if (s.udp_datagrams) {
-    std::fprintf(stderr,
-                 "  udp: %llu datagrams (%llu file headers), %llu refused or dropped by the "
-                 "kernel (e.g. nothing listening on the port)\n",
-                 static_cast<unsigned long long>(s.udp_datagrams),
-                 static_cast<unsigned long long>(s.udp_header_datagrams),
-                 static_cast<unsigned long long>(s.udp_dropped));
-  }
-  std::fprintf(stderr,
-               "  render: %llu pings, %.2f ms mean, %.2f ms max on %d threads; %llu heightmap "
-               "tiles made\n",
-               static_cast<unsigned long long>(s.pings_rendered), s.render_mean_ms, s.render_max_ms,
-               s.threads, static_cast<unsigned long long>(s.tiles_made));
-  std::fprintf(stderr, "  cpu: %.1f %% of one core (%.2f s); start-up %.2f s\n", s.cpu_percent(),
-               s.cpu_time_s, s.startup_s);
-}
 
 // A stop request (SIGINT/SIGTERM) during start-up: nothing was sent or recorded.
 int report_startup_stop(const emulator::StartupStopped& e) {
@@ -99,27 +35,9 @@ int report_startup_stop(const emulator::StartupStopped& e) {
   return 0;
 }
 
-int run_run(const std::vector<std::string>& argv) {
-  const Args args(argv, {{"--duration"},
-                         {"--udp"},
-                         {"--can", true, true},
-                         {"--record"},
-                         {"--rate"},
-                         {"--threads"},
-                         {"--quiet", false},
-                         {"--stats-json"},
-                         {"--stats-every"},
-                         {"--pose-from"},
-                         {"--stale-after"},
-                         {"--pose-delay"},
-                         {"--epoch"},
-                         {"--classify"},
-                         {"--contacts"},
-                         {"--renderer"},
-                         {"--web"}});
-  if (args.positionals().size() > 1) throw UsageError("expected at most one SCENARIO.yaml");
-  const bool quiet = args.has("--quiet");
-
+// The emulator's options from the command line (all but the statistics interval); a bad value is
+// a UsageError naming the option.
+emulator::EmulatorOptions emulator_options(const Args& args) {
   emulator::EmulatorOptions o;
   o.duration_s = args.get_double("--duration", 1e-3, 1e9);
   if (const auto udp = args.get("--udp")) {
@@ -152,14 +70,82 @@ int run_run(const std::vector<std::string>& argv) {
   if (const auto e = args.get_double("--epoch", 0.0, 253402300799.0)) {
     o.epoch_utc_ns = static_cast<std::int64_t>(std::llround(*e * 1e9));
   }
+  return o;
+}
+
+// Statistics go to the console every print_every s (0: never) and to the --web page every
+// kWebStatsEveryS: the emulator reports at the shorter interval.
+double stats_interval_s(double print_every, const std::optional<net::HostPort>& web_address) {
+  if (!web_address) return print_every;
+  return print_every > 0 ? std::min(print_every, kWebStatsEveryS) : kWebStatsEveryS;
+}
+
+// The onboard consumer fed from the run's pings (--classify): contacts in the scenario's frame,
+// to --contacts and the --web page.
+std::unique_ptr<InProcessOnboard> make_onboard(atr::Model model, const config::Scenario& scenario,
+                                               const Args& args, const emulator::Emulator& emu,
+                                               const std::vector<std::uint8_t>& file_header,
+                                               bool max_rate, std::unique_ptr<WebView>& web) {
+  atr::OnboardOptions onboard_options;  // contacts in the scenario's frame
+  onboard_options.frame_origin =
+      GeoPoint{scenario.scene.origin.latitude_deg, scenario.scene.origin.longitude_deg};
+  InProcessOnboard::ContactObserver to_web;
+  if (web) to_web = [&web](const atr::Contact& c) { web->hub.push_contact(c); };
+  return std::make_unique<InProcessOnboard>(std::move(model), onboard_options,
+                                            args.get("--contacts"), file_header, emu.packet_bytes(),
+                                            max_rate, std::move(to_web));
+}
+
+// After the run: the statistics, the onboard consumer's, the web page's, a recording error and
+// --stats-json. Returns the exit status (1 when the recording failed).
+int finish_run(const emulator::RunStats& stats, InProcessOnboard* onboard, WebView* web,
+               std::optional<OutputFile>& stats_json_file) {
+  const int sig = stop_signal();
+  print_run_summary(stats, sig == SIGINT    ? "stopped by SIGINT"
+                           : sig == SIGTERM ? "stopped by SIGTERM"
+                                            : "done");
+  if (onboard) print_onboard_stats("onboard", onboard->finish(), &onboard->queue());
+  if (web) {
+    web->hub.push_stats(web_stats_of(stats));
+    web->hub.close();  // the last lines and statistics go out; then the counts are final
+    print_web_summary(*web);
+  }
+  // after the statistics, so that a full disk never hides them
+  if (!stats.recording_error.empty()) {
+    std::fprintf(stderr, "sonarloop run: error: --record: %s\n", stats.recording_error.c_str());
+  }
+  if (stats_json_file) stats_json_file->write_and_close(emulator::stats_json(stats) + "\n");
+  return stats.recording_error.empty() ? 0 : 1;
+}
+
+int run_run(const std::vector<std::string>& argv) {
+  const Args args(argv, {{"--duration"},
+                         {"--udp"},
+                         {"--can", true, true},
+                         {"--record"},
+                         {"--rate"},
+                         {"--threads"},
+                         {"--quiet", false},
+                         {"--stats-json"},
+                         {"--stats-every"},
+                         {"--pose-from"},
+                         {"--stale-after"},
+                         {"--pose-delay"},
+                         {"--epoch"},
+                         {"--classify"},
+                         {"--contacts"},
+                         {"--renderer"},
+                         {"--web"}});
+  if (args.positionals().size() > 1) throw UsageError("expected at most one SCENARIO.yaml");
+  const bool quiet = args.has("--quiet");
+
+  emulator::EmulatorOptions o = emulator_options(args);
   // validated with --quiet too (which silences the lines)
   const double stats_every = args.get_double("--stats-every", 0.0, 3600.0).value_or(5.0);
   const double print_every = quiet ? 0.0 : stats_every;
   const std::optional<net::HostPort> web_address = web_option(args);
   // the page gets statistics every second; the console keeps its own interval
-  o.stats_interval_s =
-      !web_address ? print_every
-                   : (print_every > 0 ? std::min(print_every, kWebStatsEveryS) : kWebStatsEveryS);
+  o.stats_interval_s = stats_interval_s(print_every, web_address);
   const auto stats_json = args.get("--stats-json");
   // opened now: an unwritable place fails before the run, not after it
   std::optional<OutputFile> stats_json_file;
@@ -222,63 +208,20 @@ int run_run(const std::vector<std::string>& argv) {
   const std::vector<std::uint8_t> file_header = xtf::encode_file_header(emu.file_header());
   if (web) web->hub.push_datagram(file_header);
   if (model) {
-    atr::OnboardOptions onboard_options;  // contacts in the scenario's frame
-    onboard_options.frame_origin =
-        GeoPoint{scenario.scene.origin.latitude_deg, scenario.scene.origin.longitude_deg};
-    InProcessOnboard::ContactObserver to_web;
-    if (web) to_web = [&web](const atr::Contact& c) { web->hub.push_contact(c); };
-    onboard = std::make_unique<InProcessOnboard>(std::move(*model), onboard_options,
-                                                 args.get("--contacts"), file_header,
-                                                 emu.packet_bytes(), o.rate.max, std::move(to_web));
+    onboard = make_onboard(std::move(*model), scenario, args, emu, file_header, o.rate.max, web);
     if (!quiet) {
       std::fprintf(stderr, "onboard: classifying with %s, contacts to %s\n", classify->c_str(),
                    onboard->contacts_destination().c_str());
     }
   }
-  if (!quiet) {
-    const auto& s = emu.sonar();
-    std::fprintf(stderr,
-                 "sonar '%s': %d samples per side x %.3g m (%.4g m range), ping every %.2f ms "
-                 "(%.2f pings/s), %zu-byte XTF pings sent %.1f ms after the ping time\n",
-                 s.desc.name.c_str(), s.bins, s.desc.bin_size_m, s.desc.max_range_m,
-                 static_cast<double>(emu.ping_period_ns()) * 1e-6,
-                 1e9 / static_cast<double>(emu.ping_period_ns()), emu.packet_bytes(),
-                 static_cast<double>(emu.send_delay_ns()) * 1e-6);
-    if (emu.end_time() == std::numeric_limits<SimTime>::max()) {
-      std::fprintf(stderr, "duration: until stopped (Ctrl-C)\n");
-    } else {
-      std::fprintf(stderr, "duration: %.2f s of simulation at rate %s\n",
-                   static_cast<double>(emu.end_time()) * 1e-9, emulator::to_string(o.rate).c_str());
-    }
-    for (const auto& line : emu.describe_outputs())
-      std::fprintf(stderr, "%s\n", line.c_str());
-    if (!o.udp) {
-      std::fprintf(stderr,
-                   "hint: no --udp given, pings are not streamed (e.g. --udp 127.0.0.1:5600)\n");
-    }
-  }
+  if (!quiet) print_run_setup(emu, o);
   emulator::RunStats stats;
   try {
     stats = emu.run();
   } catch (const emulator::StartupStopped& e) {
     return report_startup_stop(e);
   }
-  const int sig = stop_signal();
-  print_final(stats, sig == SIGINT    ? "stopped by SIGINT"
-                     : sig == SIGTERM ? "stopped by SIGTERM"
-                                      : "done");
-  if (onboard) print_onboard_stats("onboard", onboard->finish(), &onboard->queue());
-  if (web) {
-    web->hub.push_stats(web_stats_of(stats));
-    web->hub.close();  // the last lines and statistics go out; then the counts are final
-    print_web_summary(*web);
-  }
-  // after the statistics, so that a full disk never hides them
-  if (!stats.recording_error.empty()) {
-    std::fprintf(stderr, "sonarloop run: error: --record: %s\n", stats.recording_error.c_str());
-  }
-  if (stats_json_file) stats_json_file->write_and_close(emulator::stats_json(stats) + "\n");
-  return stats.recording_error.empty() ? 0 : 1;
+  return finish_run(stats, onboard.get(), web.get(), stats_json_file);
 }
 
 }  // namespace

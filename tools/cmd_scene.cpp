@@ -84,27 +84,10 @@ std::string truth_json(const scene::Scene& s) {
   return w.str();
 }
 
-int run_scene(const std::vector<std::string>& argv) {
-  const Args args(argv,
-                  {{"--out"}, {"--region"}, {"--spacing"}, {"--threads"}, {"--no-view", false}});
-  if (args.positionals().size() > 1) throw UsageError("expected at most one SCENARIO.yaml");
-  const auto out_dir = args.get("--out");
-  if (!out_dir) throw UsageError("--out DIR is required");
-  const int threads =
-      static_cast<int>(args.get_int("--threads", 1, 256)
-                           .value_or(std::max(1u, std::thread::hardware_concurrency())));
-  const auto t_start = std::chrono::steady_clock::now();
-
-  const scene::SceneDesc desc = load_scene_or_default(
-      args.positionals().empty() ? std::nullopt : std::optional(args.positionals()[0]));
-  const auto t_setup = std::chrono::steady_clock::now();
-  const scene::Scene sc(desc);
-  const double setup_s = seconds_since(t_setup);
-  const auto& sb = sc.seabed();
+// The output region (--region, clipped to the seabed's extent) and the lattice that samples it:
+// every `step` model grid points, raised until neither side exceeds kMaxOutputSide.
+Lattice output_lattice(const Args& args, const seabed::SeabedModel& sb, scene::Box2& region) {
   const double d = sb.spacing_m();
-
-  // the output region (clipped to the extent) and its lattice
-  scene::Box2 region{sb.extent_min(), sb.extent_max()};
   if (const auto r = args.get("--region")) region = parse_region(*r);
   region.min = region.min.cwiseMax(sb.extent_min());
   region.max = region.max.cwiseMin(sb.extent_max());
@@ -128,28 +111,12 @@ int run_scene(const std::vector<std::string>& argv) {
   }
   lat.rows = static_cast<int>((i1 - lat.i0) / lat.step + 1);
   lat.cols = static_cast<int>((j1 - lat.j0) / lat.step + 1);
+  return lat;
+}
 
-  // generate the heightmap tiles
-  const auto t_gen = std::chrono::steady_clock::now();
-  {
-    Progress bar("generating seabed", 1.0);
-    sb.prepare(region.min.x(), region.min.y(), region.max.x(), region.max.y(), threads,
-               [&](double f) { bar.update(f); });
-  }
-  const double gen_s = seconds_since(t_gen);
-  const std::size_t tiles = sb.cached_tile_count();
-
-  // build the Embree view (the scene a ping would be rendered from)
-  double view_s = 0.0;
-  std::shared_ptr<const scene::SceneView> view;
-  if (!args.has("--no-view")) {
-    const auto t_view = std::chrono::steady_clock::now();
-    view = sc.view(region, threads);
-    view_s = seconds_since(t_view);
-  }
-  const double build_peak_mib = peak_rss_mib();
-
-  // sample the output lattice
+// The seabed's elevation and sediment at the lattice points, north row by row.
+SceneImages sample_lattice(const seabed::SeabedModel& sb, const Lattice& lat) {
+  const double d = sb.spacing_m();
   SceneImages img;
   img.rows = lat.rows;
   img.cols = lat.cols;
@@ -171,19 +138,22 @@ int run_scene(const std::vector<std::string>& argv) {
       }
     }
   }
-  draw_targets(sc, view.get(), img);
+  return img;
+}
 
-  namespace fs = std::filesystem;
-  const fs::path dir(*out_dir);
-  fs::create_directories(dir);
-  image::write_npy_f32((dir / "heightmap.npy").string(), static_cast<std::size_t>(lat.rows),
-                       static_cast<std::size_t>(lat.cols), img.elevation_m);
-  const auto range = write_heightmap_png((dir / "heightmap.png").string(), img);
-  write_sediments_png((dir / "sediments.png").string(), img);
-  write_relief_png((dir / "relief.png").string(), img);
-  write_text(dir / "truth.json", truth_json(sc));
+// What building the scene cost, for scene.json.
+struct BuildCost {
+  std::chrono::steady_clock::time_point t_start;  // of the command
+  int threads = 1;
+  double setup_s = 0.0, generate_s = 0.0, view_s = 0.0;
+  std::size_t tiles = 0;
+  double view_buffer_bytes = 0.0;  // the Embree view's (0 with --no-view)
+  double build_peak_mib = 0.0;
+};
 
-  // scene.json: how to read the files, and what it cost
+// scene.json: how to read the files, and what it cost.
+std::string scene_json(const scene::SceneDesc& desc, const SceneImages& img, const Lattice& lat,
+                       double d, std::pair<double, double> range, const BuildCost& cost) {
   json::Writer w(true);
   w.begin_object().field("scenario", desc.name).field("seed", desc.seed);
   w.field("water_depth_m", desc.water.depth_m);
@@ -223,19 +193,87 @@ int run_scene(const std::vector<std::string>& argv) {
   w.end_array();
   w.key("build")
       .begin_object()
-      .field("threads", threads)
-      .field("scene_setup_s", setup_s, 4)
-      .field("heightmap_tiles", static_cast<std::uint64_t>(tiles))
-      .field("generate_s", gen_s, 4)
-      .field("embree_view_s", view_s, 4)
-      .field("embree_buffers_mib",
-             view ? static_cast<double>(view->buffer_bytes()) / 1048576.0 : 0.0, 4)
-      .field("peak_rss_after_build_mib", build_peak_mib, 5)
-      .field("total_s", seconds_since(t_start), 4)
+      .field("threads", cost.threads)
+      .field("scene_setup_s", cost.setup_s, 4)
+      .field("heightmap_tiles", static_cast<std::uint64_t>(cost.tiles))
+      .field("generate_s", cost.generate_s, 4)
+      .field("embree_view_s", cost.view_s, 4)
+      .field("embree_buffers_mib", cost.view_buffer_bytes / 1048576.0, 4)
+      .field("peak_rss_after_build_mib", cost.build_peak_mib, 5)
+      .field("total_s", seconds_since(cost.t_start), 4)
       .field("peak_rss_mib", peak_rss_mib(), 5)
       .end_object();
   w.end_object();
-  write_text(dir / "scene.json", w.str());
+  return w.str();
+}
+
+int run_scene(const std::vector<std::string>& argv) {
+  const Args args(argv,
+                  {{"--out"}, {"--region"}, {"--spacing"}, {"--threads"}, {"--no-view", false}});
+  if (args.positionals().size() > 1) throw UsageError("expected at most one SCENARIO.yaml");
+  const auto out_dir = args.get("--out");
+  if (!out_dir) throw UsageError("--out DIR is required");
+  const int threads =
+      static_cast<int>(args.get_int("--threads", 1, 256)
+                           .value_or(std::max(1u, std::thread::hardware_concurrency())));
+  const auto t_start = std::chrono::steady_clock::now();
+
+  const scene::SceneDesc desc = load_scene_or_default(
+      args.positionals().empty() ? std::nullopt : std::optional(args.positionals()[0]));
+  const auto t_setup = std::chrono::steady_clock::now();
+  const scene::Scene sc(desc);
+  const double setup_s = seconds_since(t_setup);
+  const auto& sb = sc.seabed();
+  const double d = sb.spacing_m();
+
+  // the output region (clipped to the extent) and its lattice
+  scene::Box2 region{sb.extent_min(), sb.extent_max()};
+  const Lattice lat = output_lattice(args, sb, region);
+
+  // generate the heightmap tiles
+  const auto t_gen = std::chrono::steady_clock::now();
+  {
+    Progress bar("generating seabed", 1.0);
+    sb.prepare(region.min.x(), region.min.y(), region.max.x(), region.max.y(), threads,
+               [&](double f) { bar.update(f); });
+  }
+  const double gen_s = seconds_since(t_gen);
+  const std::size_t tiles = sb.cached_tile_count();
+
+  // build the Embree view (the scene a ping would be rendered from)
+  double view_s = 0.0;
+  std::shared_ptr<const scene::SceneView> view;
+  if (!args.has("--no-view")) {
+    const auto t_view = std::chrono::steady_clock::now();
+    view = sc.view(region, threads);
+    view_s = seconds_since(t_view);
+  }
+  const double build_peak_mib = peak_rss_mib();
+
+  // sample the output lattice
+  SceneImages img = sample_lattice(sb, lat);
+  draw_targets(sc, view.get(), img);
+
+  namespace fs = std::filesystem;
+  const fs::path dir(*out_dir);
+  fs::create_directories(dir);
+  image::write_npy_f32((dir / "heightmap.npy").string(), static_cast<std::size_t>(lat.rows),
+                       static_cast<std::size_t>(lat.cols), img.elevation_m);
+  const auto range = write_heightmap_png((dir / "heightmap.png").string(), img);
+  write_sediments_png((dir / "sediments.png").string(), img);
+  write_relief_png((dir / "relief.png").string(), img);
+  write_text(dir / "truth.json", truth_json(sc));
+
+  BuildCost cost;
+  cost.t_start = t_start;
+  cost.threads = threads;
+  cost.setup_s = setup_s;
+  cost.generate_s = gen_s;
+  cost.view_s = view_s;
+  cost.tiles = tiles;
+  cost.view_buffer_bytes = view ? static_cast<double>(view->buffer_bytes()) : 0.0;
+  cost.build_peak_mib = build_peak_mib;
+  write_text(dir / "scene.json", scene_json(desc, img, lat, d, range, cost));
   std::printf(
       "scene '%s': %d x %d points at %.4g m; setup %.2f s, %zu tiles generated in %.2f s, Embree "
       "view in %.2f s (peak %.0f MiB); wrote %s (peak %.0f MiB)\n",

@@ -1,7 +1,7 @@
 // sonarloop sweep: the resolution study of Pailhas, Petillot & Capus (2010), Sections 3-4, in
 // memory: chips from the chip renderer, the eigen-subspace classifier, misidentification with
 // 95 % Wilson intervals per target and condition, CSV files and charts (tools/plot_sweep.py).
-// The experiments and the scoring live in atr/sweep.h; this file renders, times and writes.
+// The experiments and the scoring live in study/sweep.h; this file renders, times and writes.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -13,10 +13,10 @@
 #include <optional>
 
 #include "atr/fusion.h"
-#include "atr/sweep.h"
 #include "config/loader/scenario_loader.h"
 #include "config/loader/sonar_loader.h"
 #include "sim/render/chip_renderer.h"
+#include "study/sweep.h"
 #include "tools/args.h"
 #include "tools/chip_options.h"
 #include "tools/chip_ranks.h"
@@ -108,7 +108,7 @@ std::size_t render_slot(const render::ChipRenderer& r, int slot, std::size_t cou
 }
 
 struct RunContext {
-  atr::SweepSettings settings;
+  study::SweepSettings settings;
   int threads = 1;
   fs::path out_dir;
   Progress* bar = nullptr;
@@ -118,7 +118,7 @@ struct RunContext {
 // One condition being tested: its classifier and its scores.
 struct Trial {
   std::unique_ptr<atr::Classifier> classifier;
-  std::unique_ptr<atr::ConditionResult> result;
+  std::unique_ptr<study::ConditionResult> result;
   double classify_s = 0.0;
   std::size_t classified = 0;
 };
@@ -129,32 +129,32 @@ bool render_labelled(const render::ChipRenderer& r, int slot, std::size_t count,
   const std::size_t got = render_slot(
       r, slot, count, ctx.threads,
       [&](const render::ChipImage& c) {
-        out.push_back(atr::labelled_chip(c));
+        out.push_back(study::labelled_chip(c));
         ctx.bar->update(++ctx.chips_done);
       },
       wall_s);
   return got == count;
 }
 
-void print_result(const atr::SweepExperiment& e, const atr::ConditionResult& r) {
-  const atr::SweepCondition& c = e.conditions[r.condition];
+void print_result(const study::SweepExperiment& e, const study::ConditionResult& r) {
+  const study::SweepCondition& c = e.conditions[r.condition];
   const auto& cm = r.confusion;
-  const atr::ErrorRate er = atr::error_rate(cm.total() - cm.correct(), cm.total());
+  const study::ErrorRate er = study::error_rate(cm.total() - cm.correct(), cm.total());
   std::printf("%-10s %-22s %s=%-6g misidentified %6.2f %% [%5.2f, %5.2f] of %zu", e.name.c_str(),
               c.series.c_str(), c.x_name.c_str(), c.x, 100.0 * er.rate, 100.0 * er.ci.lo,
               100.0 * er.ci.hi, er.n);
   if (e.mine_groups) {
-    const atr::ErrorRate m = atr::error_rate(r.mine_errors, r.mine_n);
+    const study::ErrorRate m = study::error_rate(r.mine_errors, r.mine_n);
     std::printf(", mine/non-mine %5.2f %% [%5.2f, %5.2f]", 100.0 * m.rate, 100.0 * m.ci.lo,
                 100.0 * m.ci.hi);
   }
   if (c.reject_quantile > 0.0) {
     std::printf(", false reject %5.2f %%",
-                100.0 * atr::error_rate(r.known_rejected, r.known_n).rate);
+                100.0 * study::error_rate(r.known_rejected, r.known_n).rate);
   }
   if (c.held_out >= 0) {
     std::printf(", held-out type accepted %5.2f %%",
-                100.0 * atr::error_rate(r.unknown_accepted, r.unknown_n).rate);
+                100.0 * study::error_rate(r.unknown_accepted, r.unknown_n).rate);
   }
   if (r.rejected > 0) std::printf(", %zu degenerate chips not scored", r.rejected);
   std::printf("; render %.1f ms/chip, train %.2f s, classify %.3f ms/chip%s\n",
@@ -164,16 +164,16 @@ void print_result(const atr::SweepExperiment& e, const atr::ConditionResult& r) 
 }
 
 // Runs one experiment; returns false when stopped.
-bool run_experiment(const atr::SweepExperiment& e, RunContext& ctx,
-                    std::vector<atr::ConditionResult>& results) {
+bool run_experiment(const study::SweepExperiment& e, RunContext& ctx,
+                    std::vector<study::ConditionResult>& results) {
   const std::size_t classes = e.classes.size();
   const auto write_all = [&] {
-    write_file(ctx.out_dir / (e.name + ".csv"), atr::results_csv(e, results));
-    write_file(ctx.out_dir / (e.name + "_confusion.csv"), atr::confusion_csv(e, results));
+    write_file(ctx.out_dir / (e.name + ".csv"), study::results_csv(e, results));
+    write_file(ctx.out_dir / (e.name + "_confusion.csv"), study::confusion_csv(e, results));
   };
-  for (const atr::RenderGroup& g : atr::render_groups(e)) {
-    const render::ChipRenderer train_r(atr::render_group_spec(e, g, ctx.settings, false));
-    const render::ChipRenderer test_r(atr::render_group_spec(e, g, ctx.settings, true));
+  for (const study::RenderGroup& g : study::render_groups(e)) {
+    const render::ChipRenderer train_r(study::render_group_spec(e, g, ctx.settings, false));
+    const render::ChipRenderer test_r(study::render_group_spec(e, g, ctx.settings, true));
     for (std::size_t slot = 0; slot < g.resolutions_m.size(); ++slot) {
       // training chips, shared by the conditions of this resolution
       std::vector<atr::LabelledChip> train;
@@ -187,7 +187,7 @@ bool run_experiment(const atr::SweepExperiment& e, RunContext& ctx,
 
       std::vector<Trial> trials;
       for (std::size_t ci : g.members[slot]) {
-        const atr::SweepCondition& c = e.conditions[ci];
+        const study::SweepCondition& c = e.conditions[ci];
         atr::TrainOptions opt;
         opt.p = c.p;
         opt.aspect_sectors = c.aspect_sectors;
@@ -196,9 +196,9 @@ bool run_experiment(const atr::SweepExperiment& e, RunContext& ctx,
         const auto t0 = Clock::now();
         opt.preprocess = c.preprocess;
         opt.reject_quantile = c.reject_quantile;
-        atr::Model model = atr::train_model(atr::training_set(train, e, c), opt);
+        atr::Model model = atr::train_model(study::training_set(train, e, c), opt);
         Trial t;
-        t.result = std::make_unique<atr::ConditionResult>(ci, e, model);
+        t.result = std::make_unique<study::ConditionResult>(ci, e, model);
         t.result->train_s = seconds_since(t0);
         t.classifier = std::make_unique<atr::Classifier>(std::move(model));
         trials.push_back(std::move(t));
@@ -224,8 +224,8 @@ bool run_experiment(const atr::SweepExperiment& e, RunContext& ctx,
                 continue;
               }
               ++t.classified;
-              atr::score_chip(*t.result, e, t.classifier->model(), truth, c.params.aspect_deg,
-                              c.params.seabed, t.classifier->result());
+              study::score_chip(*t.result, e, t.classifier->model(), truth, c.params.aspect_deg,
+                                c.params.seabed, t.classifier->result());
             }
             ctx.bar->update(++ctx.chips_done);
           },
@@ -257,16 +257,16 @@ bool run_experiment(const atr::SweepExperiment& e, RunContext& ctx,
 // The fusion experiment (atr/fusion.h): per resolution, a highlight model and a shadow model,
 // calibrated, trained on the same objects; each test object is scored from its highlight chip,
 // its shadow chip and both. Returns false when stopped.
-bool run_fusion_experiment(const atr::SweepExperiment& e, RunContext& ctx,
-                           std::vector<atr::ConditionResult>& results) {
+bool run_fusion_experiment(const study::SweepExperiment& e, RunContext& ctx,
+                           std::vector<study::ConditionResult>& results) {
   const std::size_t classes = e.classes.size();
-  for (const atr::RenderGroup& g : atr::render_groups(e)) {
-    const auto [train_hl, train_sh] = atr::fusion_specs(e, g, ctx.settings, false);
-    const auto [test_hl, test_sh] = atr::fusion_specs(e, g, ctx.settings, true);
+  for (const study::RenderGroup& g : study::render_groups(e)) {
+    const auto [train_hl, train_sh] = study::fusion_specs(e, g, ctx.settings, false);
+    const auto [test_hl, test_sh] = study::fusion_specs(e, g, ctx.settings, true);
     const render::ChipRenderer rh(train_hl), rs(train_sh), th(test_hl), ts(test_sh);
     for (std::size_t slot = 0; slot < g.resolutions_m.size(); ++slot) {
       const auto& members = g.members[slot];
-      const atr::SweepCondition& c0 = e.conditions[members.front()];
+      const study::SweepCondition& c0 = e.conditions[members.front()];
       const std::size_t n_train = static_cast<std::size_t>(g.train_count) * classes;
       const std::size_t n_test = static_cast<std::size_t>(e.test_count) * classes;
       const int islot = static_cast<int>(slot);
@@ -283,12 +283,12 @@ bool run_fusion_experiment(const atr::SweepExperiment& e, RunContext& ctx,
       opt.class_metadata = sim_class_metadata();
       opt.preprocess = c0.preprocess;
       const auto t0 = Clock::now();
-      atr::Classifier ch(atr::train_model(atr::training_set(hl, e, c0), opt));
+      atr::Classifier ch(atr::train_model(study::training_set(hl, e, c0), opt));
       opt.preprocess.crop_fraction = ctx.settings.preprocess.crop_fraction;  // not crop auto
-      atr::Classifier cs(atr::train_model(atr::training_set(sh, e, c0), opt));
+      atr::Classifier cs(atr::train_model(study::training_set(sh, e, c0), opt));
       atr::check_same_classes(ch.model(), cs.model());
       const double train_s = seconds_since(t0);
-      std::vector<atr::ConditionResult> rs_out;
+      std::vector<study::ConditionResult> rs_out;
       for (std::size_t ci : members)
         rs_out.emplace_back(ci, e, ch.model());
 
@@ -314,27 +314,27 @@ bool run_fusion_experiment(const atr::SweepExperiment& e, RunContext& ctx,
             const auto truth = static_cast<std::size_t>(
                 std::find(e.classes.begin(), e.classes.end(), c.params.type) - e.classes.begin());
             for (std::size_t k = 0; k < members.size(); ++k) {
-              const atr::SweepCondition& cond = e.conditions[members[k]];
-              atr::ConditionResult& r = rs_out[k];
+              const study::SweepCondition& cond = e.conditions[members[k]];
+              study::ConditionResult& r = rs_out[k];
               if (!shadow_ok || !h) {  // both chips are needed for a like-for-like comparison
                 ++r.rejected;
                 continue;
               }
               atr::Classification answer =
-                  cond.fusion == atr::FusionInput::kShadow ? cs.result() : *h;
-              if (cond.fusion == atr::FusionInput::kFused) {
+                  cond.fusion == study::FusionInput::kShadow ? cs.result() : *h;
+              if (cond.fusion == study::FusionInput::kFused) {
                 std::fill(fused.begin(), fused.end(), 0.0f);
                 atr::add_look(ch.model(), *h, cond.fusion_norm, fused);
                 atr::add_look(cs.model(), cs.result(), cond.fusion_norm, fused);
                 answer.class_index = atr::fused_decision(fused);
               }
-              atr::score_chip(r, e, ch.model(), truth, c.params.aspect_deg, c.params.seabed,
-                              answer);
+              study::score_chip(r, e, ch.model(), truth, c.params.aspect_deg, c.params.seabed,
+                                answer);
             }
           },
           &wall);
       render_s += wall;
-      for (atr::ConditionResult& r : rs_out) {
+      for (study::ConditionResult& r : rs_out) {
         r.render_s_per_chip =
             render_s * ctx.threads * mpi::size() / static_cast<double>(2 * (n_train + n_test));
         r.train_s = train_s;
@@ -346,8 +346,8 @@ bool run_fusion_experiment(const atr::SweepExperiment& e, RunContext& ctx,
       }
       std::sort(results.begin(), results.end(),
                 [](const auto& a, const auto& b) { return a.condition < b.condition; });
-      write_file(ctx.out_dir / (e.name + ".csv"), atr::results_csv(e, results));
-      write_file(ctx.out_dir / (e.name + "_confusion.csv"), atr::confusion_csv(e, results));
+      write_file(ctx.out_dir / (e.name + ".csv"), study::results_csv(e, results));
+      write_file(ctx.out_dir / (e.name + "_confusion.csv"), study::confusion_csv(e, results));
       if (tested < n_test) return false;
     }
   }
@@ -355,9 +355,9 @@ bool run_fusion_experiment(const atr::SweepExperiment& e, RunContext& ctx,
 }
 
 // Total chips an experiment renders, for the progress bar.
-double experiment_chips(const atr::SweepExperiment& e) {
+double experiment_chips(const study::SweepExperiment& e) {
   double total = 0.0;
-  for (const atr::RenderGroup& g : atr::render_groups(e)) {
+  for (const study::RenderGroup& g : study::render_groups(e)) {
     total += static_cast<double>(g.resolutions_m.size()) * static_cast<double>(e.classes.size()) *
              (g.train_count + e.test_count);
   }
@@ -406,7 +406,7 @@ int run_sweep(const std::vector<std::string>& argv) {
     throw UsageError("unexpected argument '" + args.positionals()[0] + "'");
   }
   RunContext ctx;
-  atr::SweepSettings& s = ctx.settings;
+  study::SweepSettings& s = ctx.settings;
   s.seed = static_cast<std::uint64_t>(
       args.get_int("--seed", 0, std::numeric_limits<long long>::max() - 1).value_or(0));
   s.train_count = static_cast<int>(args.get_int("--train-count", 2, 100000).value_or(80));
@@ -429,11 +429,11 @@ int run_sweep(const std::vector<std::string>& argv) {
   std::vector<std::string> names = args.get_all("--experiment");
   if (names.empty()) names = {"fig11"};
   if (std::find(names.begin(), names.end(), "all") != names.end())
-    names = atr::sweep_experiment_names();
-  std::vector<atr::SweepExperiment> experiments;
+    names = study::sweep_experiment_names();
+  std::vector<study::SweepExperiment> experiments;
   for (const std::string& n : names) {
     try {
-      experiments.push_back(atr::make_sweep_experiment(n, s));
+      experiments.push_back(study::make_sweep_experiment(n, s));
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--experiment: ") + e.what());
     }
@@ -458,7 +458,7 @@ int run_sweep(const std::vector<std::string>& argv) {
     for (const auto& e : experiments) {
       std::fprintf(stderr, "sonarloop sweep: %s: %s (%zu conditions)\n", e.name.c_str(),
                    e.title.c_str(), e.conditions.size());
-      std::vector<atr::ConditionResult> results;
+      std::vector<study::ConditionResult> results;
       const bool done = e.name == "fusion" ? run_fusion_experiment(e, ctx, results)
                                            : run_experiment(e, ctx, results);
       if (!done) {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "atr/chip_folder.h"
 #include "atr/model_file.h"
 #include "atr/subspace_classifier.h"
+#include "study/chip_folder.h"
 #include "tools/args.h"
 #include "tools/chip_options.h"
 #include "tools/cli_helpers.h"
@@ -79,14 +79,14 @@ int run_train(const std::vector<std::string>& argv) {
   opt.skip_degenerate = args.has("--skip-bad-chips");
   opt.preprocess = preprocess_options(args);
   opt.reject_quantile = args.get_double("--reject-quantile", 0.0, 0.9999).value_or(0.0);
-  const std::optional<atr::ChipSize> size = chip_size_option(args);
+  const std::optional<study::ChipSize> size = chip_size_option(args);
 
   // list the chips; their pixels are read one at a time while training
   const auto t0 = std::chrono::steady_clock::now();
-  atr::ChipFolderOptions fo;
+  study::ChipFolderOptions fo;
   fo.read_pixels = false;
   fo.skip_bad = opt.skip_degenerate;
-  const atr::ChipFolder folder = atr::read_chip_folder(args.positionals()[0], fo);
+  const study::ChipFolder folder = study::read_chip_folder(args.positionals()[0], fo);
   opt.class_metadata = class_metadata_options(args, folder.classes);
   if (opt.aspect_sectors > 1 && folder.aspect_count < folder.chips.size()) {
     throw std::runtime_error(std::to_string(opt.aspect_sectors) +
@@ -101,7 +101,7 @@ int run_train(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "skipped '%s': %s\n", s.source.c_str(), s.reason.c_str());
   atr::Chip chip;
   const atr::ChipLoader load = [&](std::size_t i) {
-    chip = atr::read_folder_chip(folder, i, size);
+    chip = study::read_folder_chip(folder, i, size);
     return chip.view();
   };
   StageProgress progress;

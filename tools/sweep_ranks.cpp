@@ -17,16 +17,16 @@ bool serve_slot(std::initializer_list<std::pair<const render::ChipRenderer*, std
   return true;
 }
 
-bool serve_experiment(const atr::SweepExperiment& e, const atr::SweepSettings& settings,
+bool serve_experiment(const study::SweepExperiment& e, const study::SweepSettings& settings,
                       int threads) {
   const std::size_t classes = e.classes.size();
   const std::size_t n_test = static_cast<std::size_t>(e.test_count) * classes;
-  for (const atr::RenderGroup& g : atr::render_groups(e)) {
+  for (const study::RenderGroup& g : study::render_groups(e)) {
     const std::size_t n_train = static_cast<std::size_t>(g.train_count) * classes;
     const int slots = static_cast<int>(g.resolutions_m.size());
     if (e.name == "fusion") {
-      const auto train = atr::fusion_specs(e, g, settings, false);
-      const auto test = atr::fusion_specs(e, g, settings, true);
+      const auto train = study::fusion_specs(e, g, settings, false);
+      const auto test = study::fusion_specs(e, g, settings, true);
       const render::ChipRenderer rh(train.first), rs(train.second), th(test.first), ts(test.second);
       for (int slot = 0; slot < slots; ++slot) {
         if (!serve_slot({{&rh, n_train}, {&rs, n_train}, {&th, n_test}, {&ts, n_test}}, slot,
@@ -36,8 +36,8 @@ bool serve_experiment(const atr::SweepExperiment& e, const atr::SweepSettings& s
       }
       continue;
     }
-    const render::ChipRenderer train_r(atr::render_group_spec(e, g, settings, false));
-    const render::ChipRenderer test_r(atr::render_group_spec(e, g, settings, true));
+    const render::ChipRenderer train_r(study::render_group_spec(e, g, settings, false));
+    const render::ChipRenderer test_r(study::render_group_spec(e, g, settings, true));
     for (int slot = 0; slot < slots; ++slot) {
       if (!serve_slot({{&train_r, n_train}, {&test_r, n_test}}, slot, threads)) return false;
     }
@@ -56,10 +56,10 @@ std::size_t render_sweep_chips(const render::ChipRenderer& r, int slot, std::siz
   return render_chips_on_ranks(r, jobs, threads, sink, [] { return stop_requested(); });
 }
 
-bool serve_sweep(const std::vector<atr::SweepExperiment>& experiments,
-                 const atr::SweepSettings& settings, int threads) {
+bool serve_sweep(const std::vector<study::SweepExperiment>& experiments,
+                 const study::SweepSettings& settings, int threads) {
   install_stop_flag();
-  for (const atr::SweepExperiment& e : experiments) {
+  for (const study::SweepExperiment& e : experiments) {
     if (!serve_experiment(e, settings, threads)) return false;
   }
   return true;

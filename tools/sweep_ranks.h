@@ -3,7 +3,7 @@
 // in one process (training, scoring, files, output) and takes every chip it needs from
 // render_sweep_chips; the other ranks run serve_sweep, which makes the same render calls in the
 // same order, so that each renders its share of every chip set. The order is cmd_sweep.cpp's:
-// per experiment, per render group (atr::render_groups), per resolution slot, the training chips
+// per experiment, per render group (study::render_groups), per resolution slot, the training chips
 // then the test chips (fusion: highlight then shadow training chips, highlight then shadow test
 // chips). A change of that order must be made in both places; the call fingerprints of
 // chip_ranks.h turn a mismatch into an error, and tests/tools/mpi_cli_test.cpp checks the files.
@@ -11,8 +11,8 @@
 #include <functional>
 #include <vector>
 
-#include "atr/sweep.h"
 #include "sim/render/chip_renderer.h"
+#include "study/sweep.h"
 
 namespace sonarloop::tools {
 
@@ -24,7 +24,7 @@ std::size_t render_sweep_chips(const render::ChipRenderer& r, int slot, std::siz
 
 // The other ranks' side of a sweep: renders this rank's share of every chip set of
 // `experiments`, in cmd_sweep.cpp's order. Returns false when rank 0 stopped early.
-bool serve_sweep(const std::vector<atr::SweepExperiment>& experiments,
-                 const atr::SweepSettings& settings, int threads);
+bool serve_sweep(const std::vector<study::SweepExperiment>& experiments,
+                 const study::SweepSettings& settings, int threads);
 
 }  // namespace sonarloop::tools

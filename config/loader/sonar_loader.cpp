@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <optional>
+
+#include "config/loader/units_text.h"
 
 namespace sonarloop::config {
 namespace {
@@ -50,54 +50,10 @@ constexpr double kMaxBinsPerChirpResolution = 4.0;
 // decimal, converted to SI in binary) are accepted.
 constexpr double kRuleSlack = 1e-12;
 
-// --- YAML units ------------------------------------------------------------------------------
-
-// The non-SI units of sonar keys. Conversions multiply or divide by a power of ten (one
-// correctly rounded operation), so a YAML value that is exact in binary (an integer, 7.5, ...)
-// converts to the double nearest its decimal SI value (5 cm -> 0.05 m, 80 us -> 80e-6 s).
-enum class Unit { kKilohertz, kMicrosecond, kCentimetre };
-
-double to_si(double v, Unit u) {
-  switch (u) {
-    case Unit::kKilohertz:
-      return v * 1e3;
-    case Unit::kMicrosecond:
-      return v / 1e6;
-    case Unit::kCentimetre:
-      return v / 1e2;
-  }
-  return v;
-}
-
-double from_si(double v, Unit u) {
-  switch (u) {
-    case Unit::kKilohertz:
-      return v / 1e3;
-    case Unit::kMicrosecond:
-      return v * 1e6;
-    case Unit::kCentimetre:
-      return v * 1e2;
-  }
-  return v;
-}
-
-// The shortest decimal text, in unit `u`, that converts back to exactly `si` ("7" for 0.07 m in
-// cm, where 0.07 * 100 = 7.000000000000001); the plain conversion when no text does.
-std::string unit_text(double si, Unit u) {
-  const double v = from_si(si, u);
-  for (int digits = 1; digits <= 17; ++digits) {
-    char buf[40];
-    const auto printed =
-        std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, digits);
-    double candidate = 0.0;
-    std::from_chars(buf, printed.ptr, candidate);
-    if (to_si(candidate, u) == si) return format_number(candidate);
-  }
-  return format_number(v);
-}
+// --- YAML units (units_text.h) --------------------------------------------------------------
 
 // `key` in YAML unit `u`, converted to SI; the base (preset) value, untouched, when not set.
-double get_si(const Field& f, std::string_view key, double base_si, Unit u, const Range& r) {
+double get_si(const Field& f, std::string_view key, double base_si, YamlUnit u, const Range& r) {
   const Field c = f.child(key);
   return c.present() ? to_si(c.as_double(r), u) : base_si;
 }
@@ -226,13 +182,6 @@ const NameTable<std::string>& preset_node_names() {
 
 // --- messages --------------------------------------------------------------------------------
 
-// a derived value for a message: 6 significant digits
-std::string approx(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
 // a bound for an "allowed" text, rounded outwards at 4 decimals so that it satisfies the rule
 std::string at_least(double v) {
   return format_number(std::ceil(v * 1e4) / 1e4);
@@ -261,8 +210,8 @@ void check_rules(const Field& f, const SonarDesc& d) {
   const double c = kNominalSoundSpeed_m_s;
   const double range_m = d.max_range_m;
   // the values as the user wrote them (or would write them)
-  const std::string bin_cm = unit_text(d.bin_size_m, Unit::kCentimetre);
-  const std::string f_khz = unit_text(d.frequency_hz, Unit::kKilohertz);
+  const std::string bin_cm = unit_text(d.bin_size_m, YamlUnit::kCentimetre);
+  const std::string f_khz = unit_text(d.frequency_hz, YamlUnit::kKilohertz);
   const std::string xtf_note = "at most " + std::to_string(kMaxSamplesPerSide) +
                                " samples per side, the XTF WORD-safe limit";
 
@@ -336,7 +285,7 @@ void check_rules(const Field& f, const SonarDesc& d) {
   }
 
   if (d.chirp_bandwidth_hz > 0.0) {
-    const std::string b_khz = unit_text(d.chirp_bandwidth_hz, Unit::kKilohertz);
+    const std::string b_khz = unit_text(d.chirp_bandwidth_hz, YamlUnit::kKilohertz);
     // the band f ± B/2 stays above 0 Hz
     if (!(d.chirp_bandwidth_hz < 2.0 * d.frequency_hz)) {
       const std::string why = " (the band frequency +/- bandwidth/2 must stay above 0 Hz)";
@@ -354,11 +303,11 @@ void check_rules(const Field& f, const SonarDesc& d) {
     const double resolution_m = c / (2.0 * d.chirp_bandwidth_hz);
     const double limit_m = kMaxBinsPerChirpResolution * d.bin_size_m;
     if (resolution_m > limit_m * (1.0 + kRuleSlack)) {
-      const std::string res_cm = approx(from_si(resolution_m, Unit::kCentimetre));
+      const std::string res_cm = approx(from_si(resolution_m, YamlUnit::kCentimetre));
       const std::string min_b_khz =
           at_least(c / (2.0 * limit_m) / 1e3);  // B for which c/(2B) = 4 bins
       const std::string min_bin_cm =
-          at_least(from_si(resolution_m, Unit::kCentimetre) / kMaxBinsPerChirpResolution);
+          at_least(from_si(resolution_m, YamlUnit::kCentimetre) / kMaxBinsPerChirpResolution);
       const std::string bins = format_number(kMaxBinsPerChirpResolution);
       if (blamed(f, "chirp_bandwidth_khz", "bin_size_cm") == 0) {
         f.child("chirp_bandwidth_khz")
@@ -407,24 +356,24 @@ SonarDesc read_sonar_map(const Field& f, Source source) {
   d.name = f.get_string("name", base.name);
   if (d.name.empty()) d.name = base.name;
   d.frequency_hz =
-      get_si(f, "frequency_khz", base.frequency_hz, Unit::kKilohertz, Range::closed(50, 1000));
+      get_si(f, "frequency_khz", base.frequency_hz, YamlUnit::kKilohertz, Range::closed(50, 1000));
   d.source_level_db =
       get_plain(f, "source_level_db", base.source_level_db, Range::closed(150, 250));
-  d.pulse_length_s = get_si(f, "pulse_length_us", base.pulse_length_s, Unit::kMicrosecond,
+  d.pulse_length_s = get_si(f, "pulse_length_us", base.pulse_length_s, YamlUnit::kMicrosecond,
                             Range::closed(0, 10000).with_note("0 = auto"));
-  d.chirp_bandwidth_hz = get_si(f, "chirp_bandwidth_khz", base.chirp_bandwidth_hz, Unit::kKilohertz,
-                                Range::closed(0, 500).with_note("0 = CW"));
+  d.chirp_bandwidth_hz = get_si(f, "chirp_bandwidth_khz", base.chirp_bandwidth_hz,
+                                YamlUnit::kKilohertz, Range::closed(0, 500).with_note("0 = CW"));
   d.array_length_m = get_plain(f, "array_length_m", base.array_length_m, Range::closed(0.02, 10));
   d.array_height_m = get_plain(f, "array_height_m", base.array_height_m, Range::closed(0.005, 1));
   d.depression_deg = get_plain(f, "depression_deg", base.depression_deg, Range::closed(0, 60));
   d.max_range_m = get_plain(f, "max_range_m", base.max_range_m, Range::closed(1, 1000));
   d.bin_size_m =
-      get_si(f, "bin_size_cm", base.bin_size_m, Unit::kCentimetre, Range::closed(1, 100));
+      get_si(f, "bin_size_cm", base.bin_size_m, YamlUnit::kCentimetre, Range::closed(1, 100));
   d.ping_period_s =
       get_plain(f, "ping_period_s", base.ping_period_s, Range::closed(0, 10).with_note("0 = auto"));
   d.along_track = f.get_enum("along_track", base.along_track, along_track_names());
   d.along_track_resolution_m =
-      get_si(f, "along_track_resolution_cm", base.along_track_resolution_m, Unit::kCentimetre,
+      get_si(f, "along_track_resolution_cm", base.along_track_resolution_m, YamlUnit::kCentimetre,
              Range::closed(0, 500).with_note("0 = bin_size_cm"));
   d.sample_type = f.get_enum("sample_type", base.sample_type, sample_type_names());
   d.tvg = tvg_law(f.get_enum("tvg", tvg_choice(base.tvg), tvg_names()));
@@ -502,19 +451,19 @@ std::string format_sonar_yaml(const SonarDesc& d, int indent) {
   name << YAML::DoubleQuoted << d.name;
   std::string out;
   put(out, pad, "name", name.c_str());
-  put(out, pad, "frequency_khz", unit_text(d.frequency_hz, Unit::kKilohertz));
+  put(out, pad, "frequency_khz", unit_text(d.frequency_hz, YamlUnit::kKilohertz));
   put(out, pad, "source_level_db", num(d.source_level_db));
-  put(out, pad, "pulse_length_us", unit_text(d.pulse_length_s, Unit::kMicrosecond));
-  put(out, pad, "chirp_bandwidth_khz", unit_text(d.chirp_bandwidth_hz, Unit::kKilohertz));
+  put(out, pad, "pulse_length_us", unit_text(d.pulse_length_s, YamlUnit::kMicrosecond));
+  put(out, pad, "chirp_bandwidth_khz", unit_text(d.chirp_bandwidth_hz, YamlUnit::kKilohertz));
   put(out, pad, "array_length_m", num(d.array_length_m));
   put(out, pad, "array_height_m", num(d.array_height_m));
   put(out, pad, "depression_deg", num(d.depression_deg));
   put(out, pad, "max_range_m", num(d.max_range_m));
-  put(out, pad, "bin_size_cm", unit_text(d.bin_size_m, Unit::kCentimetre));
+  put(out, pad, "bin_size_cm", unit_text(d.bin_size_m, YamlUnit::kCentimetre));
   put(out, pad, "ping_period_s", num(d.ping_period_s));
   put(out, pad, "along_track", word_of(kAlongTrackWords, d.along_track));
   put(out, pad, "along_track_resolution_cm",
-      unit_text(d.along_track_resolution_m, Unit::kCentimetre));
+      unit_text(d.along_track_resolution_m, YamlUnit::kCentimetre));
   put(out, pad, "sample_type", word_of(kSampleTypeWords, d.sample_type));
   put(out, pad, "tvg", word_of(kTvgWords, tvg_choice(d.tvg)));
   put(out, pad, "gain_db", num(d.gain_db));

@@ -12,14 +12,17 @@
 //                  speed_m_s, max_turn_rate_deg_s, depth: {...}, sway: {...}, attitude: {...}}
 //     nav: {position_noise_m, position_drift_m_per_sqrt_s, heading_bias_deg, ...}
 //
-// Rules beyond the per-key ranges (which are validate()'s hard limits, in YAML units):
+// The limits are validate()'s (sim/vehicle/vehicle_desc.h), the one source of them: each number
+// is read as a plain finite number and converted to SI, validate() runs on the result, and each
+// of its problems becomes an issue at the YAML key it concerns, with its line, the value as
+// written and the allowed range in the key's unit (degrees for *_deg keys). All of them are
+// reported in one ConfigError. Further rules:
 // - Keys of another trajectory kind are errors (length_m with kind: waypoints, ...), and so are
 //   keys of the other depth mode (depth_m with mode: altitude, altitude_m with mode: depth, ...).
 //   start_m and heading_deg belong to straight and waypoints (a lawnmower starts at
 //   lawnmower.origin_m); waypoints_m is required for kind: waypoints.
-// - validate() of vehicle_desc.h runs on the result (cross-field rules, e.g. consecutive
-//   waypoints, start_m included, at least 0.01 m apart); each of its messages becomes a
-//   ConfigError at the YAML key it concerns.
+// - validate()'s cross-field rules (e.g. consecutive waypoints, start_m included, at least
+//   0.01 m apart) are reported the same way, at the waypoint concerned.
 // - The planned path (path.h) may have at most Trajectory::kMaxProfileSteps profile steps
 //   (path length / depth.profile_step_m), and the mission (path length / speed_m_s) may last at
 //   most kMaxMissionDurationS, so that every loaded vehicle can be planned.

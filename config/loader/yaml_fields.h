@@ -160,6 +160,9 @@ class Field {
 
   // --- this node as a value ---
   double as_double(const Range& range) const;
+  // A finite number, its range not checked: for a value a later check judges (a description's
+  // validate()). `described` is what "allowed" says when the value is not a number at all.
+  double as_number(const Range& described) const;
   int as_int(int lo, int hi) const;
   std::uint64_t as_uint64(std::uint64_t lo, std::uint64_t hi) const;
   bool as_bool() const;

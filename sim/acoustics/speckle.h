@@ -13,7 +13,7 @@
 // so a caller can draw u from any deterministic stream; the K form takes an Rng.
 #include <span>
 
-#include "sim/core/rng.h"
+#include "common/rng.h"
 
 namespace sonarloop::acoustics {
 

@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "sim/core/rng.h"
+#include "common/rng.h"
 #include "sim/render/quantise.h"
 #include "sim/seabed/seabed_model.h"
 #include "units/angles.h"
@@ -105,15 +105,6 @@ std::pair<double, double> seabed_depth_range(const seabed::SeabedModel& seabed,
 }
 
 }  // namespace
-
-const char* chip_kind_name(ChipKind kind) {
-  return kind == ChipKind::kShadow ? "shadow" : "highlight";
-}
-
-std::uint8_t chip_pixel(double level_db, const ChipLevels& levels) {
-  const double t = (level_db - levels.min_db) / (levels.max_db - levels.min_db);
-  return static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(t, 0.0, 1.0)));
-}
 
 std::vector<std::string> builtin_dataset_seabed_names() {
   return {"flat", "ripples", "clutter", "rocky"};

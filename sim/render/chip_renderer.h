@@ -54,6 +54,7 @@
 #include <string>
 #include <vector>
 
+#include "common/chip_convention.h"
 #include "sim/frames.h"
 #include "sim/render/ping_renderer.h"
 #include "sim/render/sonar.h"
@@ -63,18 +64,18 @@
 
 namespace sonarloop::render {
 
-enum class ChipKind { kHighlight, kShadow };
-
-const char* chip_kind_name(ChipKind kind);  // "highlight", "shadow"
-
-// Physical chip sizes (see the header comment).
-inline constexpr double kHighlightChipAlong_m = 3.0;
-inline constexpr double kHighlightChipRange_m = 3.0;
-inline constexpr double kShadowChipAlong_m = 3.0;
-inline constexpr double kShadowChipRange_m = 10.0;
-inline constexpr double kShadowChipNear_m = 1.0;  // the window starts this far before the centre
-// Section 4.2: shadow chips are taken at a fixed 25 m ground range.
-inline constexpr double kShadowGroundRange_m = 25.0;
+// The chip convention (kinds, sizes, pixel levels) is common/chip_convention.h, shared with the
+// onboard side (atr/), which cuts the same chips out of a live stream.
+using chips::chip_kind_name;
+using chips::chip_pixel;
+using chips::ChipKind;
+using chips::ChipLevels;
+using chips::kHighlightChipAlong_m;
+using chips::kHighlightChipRange_m;
+using chips::kShadowChipAlong_m;
+using chips::kShadowChipNear_m;
+using chips::kShadowChipRange_m;
+using chips::kShadowGroundRange_m;
 // Range bins rendered beyond each end of the window and cropped, so that echoes spread across
 // the window's edges (ray tubes, PingRenderer) reach its first and last columns as inside it.
 inline constexpr int kChipRangeMarginBins = 2;
@@ -91,12 +92,6 @@ inline constexpr double kBlockSize_m = 64.0;
 // sonar 50 m away still sees seabed.
 inline constexpr double kDatasetSeabedSize_m = 2000.0;
 inline constexpr double kDatasetSeabedMargin_m = 80.0;
-
-// Pixel mapping (see the header comment).
-struct ChipLevels {
-  double min_db = -60.0;  // pixel 0 (and below)
-  double max_db = 0.0;    // pixel 255 (and above): full scale
-};
 
 // One seabed kind: its name (CSV label) and a scene whose seed, water and seabed sections
 // describe it (targets are ignored; the extent is replaced by the dataset's shared square).
@@ -231,8 +226,5 @@ struct ChipJob {
 std::size_t render_chips(const ChipRenderer& renderer, std::span<const ChipJob> jobs, int threads,
                          const std::function<void(const ChipImage&)>& sink,
                          const std::function<bool()>& stop = {});
-
-// 8-bit pixel of a level (dB re full scale) over a span (see ChipLevels).
-std::uint8_t chip_pixel(double level_db, const ChipLevels& levels);
 
 }  // namespace sonarloop::render

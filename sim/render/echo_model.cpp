@@ -4,10 +4,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "common/rng.h"
 #include "sim/acoustics/beam_pattern.h"
 #include "sim/acoustics/noise.h"
 #include "sim/acoustics/target_scattering.h"
-#include "sim/core/rng.h"
 #include "sim/render/bin_labels.h"
 #include "sim/seabed/sediment.h"
 

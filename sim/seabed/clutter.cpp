@@ -5,7 +5,7 @@
 #include <limits>
 #include <numbers>
 
-#include "sim/core/rng.h"
+#include "common/rng.h"
 
 namespace sonarloop::seabed {
 

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/core/rng.h"
+#include "common/rng.h"
 #include "sim/seabed/spectra.h"
 #include "sim/seabed/tile_cache.h"
 

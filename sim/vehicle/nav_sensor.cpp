@@ -10,12 +10,9 @@ namespace sonarloop::vehicle {
 
 NavSensorModel::NavSensorModel(const NavNoiseDesc& desc, std::uint64_t seed)
     : desc_(desc), seed_(seed) {
-  const std::vector<std::string> errors = validate(desc, "nav");
-  if (!errors.empty()) {
-    std::string message = "invalid navigation noise: ";
-    for (std::size_t i = 0; i < errors.size(); ++i)
-      message += (i ? "; " : "") + errors[i];
-    throw std::invalid_argument(message);
+  const std::vector<Problem> problems = validate(desc, "nav");
+  if (!problems.empty()) {
+    throw std::invalid_argument("invalid navigation noise: " + join_messages(problems));
   }
   noise_step_ns_ = std::max<SimTime>(1, from_seconds(desc.noise_step_s));
   drift_step_ns_ = std::max<SimTime>(1, from_seconds(desc.drift_step_s));

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "sim/core/rng.h"
+#include "common/rng.h"
 
 namespace sonarloop::vehicle {
 

@@ -2,7 +2,7 @@
 // Noise processes that are pure functions of (seed, channel, time): the same arguments give the
 // same value on any thread, in any order, with no state and no cache (docs/design.md, randomness).
 // Every normal value is normal_from_hash(hash_keys(seed, RngStream::kNavNoise, key, i, j)) with
-// keys that never repeat between channels, kinds or time indices (sim/core/rng.h).
+// keys that never repeat between channels, kinds or time indices (common/rng.h).
 //
 // White noise: N(0, 1) held constant within each time step [k·step, (k+1)·step), independent
 // between steps (k = floor(t / step), negative t included).

@@ -33,7 +33,9 @@ double lag(double value0, double command, double dt_s, double tau_s) {
 Trajectory::Trajectory(const TrajectoryDesc& desc, const SeabedDepthFn& seabed_depth_m,
                        const PlanProgressFn& progress)
     : desc_(desc), min_altitude_m_(kNaN) {
-  std::vector<std::string> errors = validate(desc, "trajectory");
+  std::vector<std::string> errors;
+  for (const Problem& p : validate(desc, "trajectory"))
+    errors.push_back(p.message());
   if (desc.depth.mode == DepthMode::kAltitude && !seabed_depth_m) {
     errors.push_back(
         "trajectory.depth.mode = altitude: terrain following needs the seabed depth (from the "

@@ -1,7 +1,7 @@
 #include "sim/vehicle/vehicle_desc.h"
 
 #include <cmath>
-#include <limits>
+#include <iterator>
 #include <numbers>
 #include <sstream>
 
@@ -12,45 +12,194 @@ namespace {
 // hard limits of validate(); the header comments give the sensible (typical) ranges
 constexpr double kMaxSpeedMPerS = 20.0;      // far above any AUV (fast ones reach ~5 m/s)
 constexpr double kMaxTurnRateRadPerS = 2.0;  // ~115 deg/s
-constexpr double kMaxRollGain = 10.0;
-constexpr double kMaxPitchGain = 10.0;
+constexpr double kMaxGain = 10.0;            // roll_gain (either sign) and pitch_gain
 constexpr double kMaxScaleFactorError = 0.5;
-constexpr double kMaxNoiseStepS = 3600.0;
+constexpr double kMaxStepS = 3600.0;  // noise and drift steps, the roll time constant
+constexpr double kMinStepS = 1e-9;    // at least 1 ns: the steps are used as integer nanoseconds
 constexpr int kMaxLegs = 10000;
 constexpr double kMinPointSeparationM = 0.01;  // consecutive waypoints closer are an error
+constexpr double kPi = std::numbers::pi;
 
-class Checker {
- public:
-  explicit Checker(std::string_view prefix) : prefix_(prefix) {}
-
-  // value must be finite and satisfy lo (<|<=) value (<|<=) hi
-  void range(std::string_view key, double value, double lo, bool lo_open, double hi, bool hi_open,
-             std::string_view unit) {
-    const bool ok = std::isfinite(value) && (lo_open ? value > lo : value >= lo) &&
-                    (hi_open ? value < hi : value <= hi);
-    if (ok) return;
-    std::ostringstream os;
-    os << prefix_ << "." << key << " = " << value << ": must be in " << (lo_open ? "(" : "[") << lo
-       << ", " << hi << (hi_open ? ")" : "]");
-    if (!unit.empty()) os << " " << unit;
-    errors_.push_back(os.str());
-  }
-  void finite(std::string_view key, double value, std::string_view unit) {
-    if (std::isfinite(value)) return;
-    std::ostringstream os;
-    os << prefix_ << "." << key << " = " << value << ": must be a finite number";
-    if (!unit.empty()) os << " (" << unit << ")";
-    errors_.push_back(os.str());
-  }
-  void fail(const std::string& message) { errors_.push_back(prefix_ + "." + message); }
-  std::vector<std::string> take() { return std::move(errors_); }
-
- private:
-  std::string prefix_;
-  std::vector<std::string> errors_;
+// One hard limit of validate(): a number field of a description D (its path below D), what is
+// allowed, and when the rule applies (nullptr = always). The tables below are the one source of
+// the limits: validate() applies them and limit_of() reports them.
+template <class D>
+struct NumberRule {
+  std::string_view field;
+  Limit allowed;
+  double (*get)(const D&);
+  bool (*applies)(const D&) = nullptr;
 };
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using TrajectoryRule = NumberRule<TrajectoryDesc>;
+using NavRule = NumberRule<NavNoiseDesc>;
+
+bool starts_at_start(const TrajectoryDesc& d) {
+  return d.kind != TrajectoryKind::kLawnmower;
+}
+bool is_straight(const TrajectoryDesc& d) {
+  return d.kind == TrajectoryKind::kStraight;
+}
+bool is_lawnmower(const TrajectoryDesc& d) {
+  return d.kind == TrajectoryKind::kLawnmower;
+}
+bool at_constant_depth(const TrajectoryDesc& d) {
+  return d.depth.mode == DepthMode::kConstantDepth;
+}
+bool follows_terrain(const TrajectoryDesc& d) {
+  return d.depth.mode == DepthMode::kAltitude;
+}
+
+// In the order validate() reports them. The sway keys are checked whatever the amplitude, so
+// that a description is valid or not independently of whether sway is switched on.
+const std::vector<TrajectoryRule>& trajectory_rules() {
+  using T = TrajectoryDesc;
+  static const std::vector<TrajectoryRule> rules = {
+      {"start.north_m", Limit::finite("m"), [](const T& d) { return d.start.north_m; },
+       starts_at_start},
+      {"start.east_m", Limit::finite("m"), [](const T& d) { return d.start.east_m; },
+       starts_at_start},
+      {"start_heading", Limit::finite("rad"), [](const T& d) { return d.start_heading; },
+       starts_at_start},
+      {"straight_length_m", Limit::above(0.0, "m"), [](const T& d) { return d.straight_length_m; },
+       is_straight},
+      {"lawnmower.origin.north_m", Limit::finite("m"),
+       [](const T& d) { return d.lawnmower.origin.north_m; }, is_lawnmower},
+      {"lawnmower.origin.east_m", Limit::finite("m"),
+       [](const T& d) { return d.lawnmower.origin.east_m; }, is_lawnmower},
+      {"lawnmower.first_leg_heading", Limit::finite("rad"),
+       [](const T& d) { return d.lawnmower.first_leg_heading; }, is_lawnmower},
+      {"lawnmower.leg_length_m", Limit::above(0.0, "m"),
+       [](const T& d) { return d.lawnmower.leg_length_m; }, is_lawnmower},
+      {"lawnmower.line_spacing_m", Limit::above(0.0, "m"),
+       [](const T& d) { return d.lawnmower.line_spacing_m; }, is_lawnmower},
+      {"lawnmower.legs", Limit::whole(1, kMaxLegs),
+       [](const T& d) { return static_cast<double>(d.lawnmower.legs); }, is_lawnmower},
+      {"speed_m_s", Limit::above_up_to(0.0, kMaxSpeedMPerS, "m/s"),
+       [](const T& d) { return d.speed_m_s; }},
+      {"max_turn_rate_rad_s", Limit::above_up_to(0.0, kMaxTurnRateRadPerS, "rad/s"),
+       [](const T& d) { return d.max_turn_rate_rad_s; }},
+      {"depth.depth_m", Limit::at_least(0.0, "m"), [](const T& d) { return d.depth.depth_m; },
+       at_constant_depth},
+      {"depth.altitude_m", Limit::above(0.0, "m"), [](const T& d) { return d.depth.altitude_m; },
+       follows_terrain},
+      {"depth.max_climb_rate_m_s", Limit::above_up_to(0.0, kMaxSpeedMPerS, "m/s"),
+       [](const T& d) { return d.depth.max_climb_rate_m_s; }, follows_terrain},
+      {"depth.look_ahead_m", Limit::at_least(0.0, "m"),
+       [](const T& d) { return d.depth.look_ahead_m; }, follows_terrain},
+      {"depth.min_depth_m", Limit::at_least(0.0, "m"),
+       [](const T& d) { return d.depth.min_depth_m; }, follows_terrain},
+      {"depth.vertical_smoothing_m", Limit::closed(0.0, 1000.0, "m"),
+       [](const T& d) { return d.depth.vertical_smoothing_m; }, follows_terrain},
+      // the step is used in both modes (altitude along the path is precomputed when the seabed
+      // is known)
+      {"depth.profile_step_m", Limit::closed(0.05, 10.0, "m"),
+       [](const T& d) { return d.depth.profile_step_m; }},
+      {"sway.amplitude_m", Limit::at_least(0.0, "m"),
+       [](const T& d) { return d.sway.amplitude_m; }},
+      {"sway.period_s", Limit::above(0.0, "s"), [](const T& d) { return d.sway.period_s; }},
+      {"sway.phase", Limit::finite("rad"), [](const T& d) { return d.sway.phase; }},
+      {"sway.yaw_coupling", Limit::closed(0.0, 1.0),
+       [](const T& d) { return d.sway.yaw_coupling; }},
+      {"attitude.roll_gain", Limit::closed(-kMaxGain, kMaxGain),
+       [](const T& d) { return d.attitude.roll_gain; }},
+      {"attitude.max_roll", Limit::open(0.0, kPi / 2, "rad"),
+       [](const T& d) { return d.attitude.max_roll; }},
+      {"attitude.roll_time_constant_s", Limit::closed(0.0, kMaxStepS, "s"),
+       [](const T& d) { return d.attitude.roll_time_constant_s; }},
+      {"attitude.pitch_gain", Limit::closed(0.0, kMaxGain),
+       [](const T& d) { return d.attitude.pitch_gain; }},
+      {"attitude.max_pitch", Limit::open(0.0, kPi / 2, "rad"),
+       [](const T& d) { return d.attitude.max_pitch; }},
+  };
+  return rules;
+}
+
+const std::vector<NavRule>& nav_rules() {
+  using N = NavNoiseDesc;
+  static const std::vector<NavRule> rules = {
+      {"position_noise_sd_m", Limit::at_least(0.0, "m"),
+       [](const N& d) { return d.position_noise_sd_m; }},
+      {"position_drift_m_per_sqrt_s", Limit::at_least(0.0, "m/sqrt(s)"),
+       [](const N& d) { return d.position_drift_m_per_sqrt_s; }},
+      {"heading_bias", Limit::closed(-kPi, kPi, "rad"), [](const N& d) { return d.heading_bias; }},
+      {"heading_noise_sd", Limit::at_least(0.0, "rad"),
+       [](const N& d) { return d.heading_noise_sd; }},
+      {"heading_drift_rad_per_sqrt_s", Limit::at_least(0.0, "rad/sqrt(s)"),
+       [](const N& d) { return d.heading_drift_rad_per_sqrt_s; }},
+      {"attitude_noise_sd", Limit::at_least(0.0, "rad"),
+       [](const N& d) { return d.attitude_noise_sd; }},
+      {"speed_noise_sd_m_s", Limit::at_least(0.0, "m/s"),
+       [](const N& d) { return d.speed_noise_sd_m_s; }},
+      {"speed_scale_factor_error", Limit::open(-kMaxScaleFactorError, kMaxScaleFactorError),
+       [](const N& d) { return d.speed_scale_factor_error; }},
+      {"yaw_rate_noise_sd_rad_s", Limit::at_least(0.0, "rad/s"),
+       [](const N& d) { return d.yaw_rate_noise_sd_rad_s; }},
+      {"depth_noise_sd_m", Limit::at_least(0.0, "m"),
+       [](const N& d) { return d.depth_noise_sd_m; }},
+      {"altitude_noise_sd_m", Limit::at_least(0.0, "m"),
+       [](const N& d) { return d.altitude_noise_sd_m; }},
+      {"noise_step_s", Limit::closed(kMinStepS, kMaxStepS, "s"),
+       [](const N& d) { return d.noise_step_s; }},
+      {"drift_step_s", Limit::closed(kMinStepS, kMaxStepS, "s"),
+       [](const N& d) { return d.drift_step_s; }},
+  };
+  return rules;
+}
+
+// Applies every rule of `rules` that applies to `desc`, appending the violations to `out`.
+template <class D>
+void apply_rules(const std::vector<NumberRule<D>>& rules, const D& desc, std::string_view prefix,
+                 std::vector<Problem>& out) {
+  for (const auto& rule : rules) {
+    if (rule.applies && !rule.applies(desc)) continue;
+    auto problem = check_limit(std::string(prefix) + "." + std::string(rule.field), rule.get(desc),
+                               rule.allowed);
+    if (problem) out.push_back(std::move(*problem));
+  }
+}
+
+template <class D>
+std::optional<Limit> find_rule(const std::vector<NumberRule<D>>& rules, std::string_view field) {
+  for (const auto& rule : rules) {
+    if (rule.field == field) return rule.allowed;
+  }
+  return std::nullopt;
+}
+
+std::string point_text(const NorthEast& p) {
+  std::ostringstream os;
+  os << "(" << p.north_m << ", " << p.east_m << ")";
+  return os.str();
+}
+
+// Kind waypoints: at least one, each finite, consecutive ones (the start included) apart.
+void check_waypoints(const TrajectoryDesc& desc, std::string_view prefix,
+                     std::vector<Problem>& out) {
+  const std::string list = std::string(prefix) + ".waypoints";
+  if (desc.waypoints.empty()) {
+    out.push_back({list, std::nullopt, std::nullopt, "at least one waypoint is required"});
+  }
+  const Limit gap_limit = Limit::at_least(kMinPointSeparationM, "m");
+  NorthEast previous = desc.start;
+  for (std::size_t i = 0; i < desc.waypoints.size(); ++i) {
+    const NorthEast& w = desc.waypoints[i];
+    const std::string key = list + "[" + std::to_string(i) + "]";
+    for (auto p : {check_limit(key + ".north_m", w.north_m, Limit::finite("m")),
+                   check_limit(key + ".east_m", w.east_m, Limit::finite("m"))}) {
+      if (p) out.push_back(std::move(*p));
+    }
+    const double gap = std::hypot(w.north_m - previous.north_m, w.east_m - previous.east_m);
+    if (std::isfinite(gap) && !gap_limit.contains(gap)) {
+      std::ostringstream os;
+      os << point_text(w) << " is " << gap << " m from the "
+         << (i == 0 ? "start point" : "previous waypoint")
+         << "; consecutive points must be at least " << kMinPointSeparationM << " m apart";
+      out.push_back({key, std::nullopt, gap_limit, os.str()});
+    }
+    previous = w;
+  }
+}
 
 }  // namespace
 
@@ -96,119 +245,35 @@ std::optional<DepthMode> depth_mode_from_string(std::string_view name) {
   return std::nullopt;
 }
 
-std::vector<std::string> validate(const TrajectoryDesc& desc, std::string_view prefix) {
-  constexpr double kPi = std::numbers::pi;
-  Checker c(prefix);
-
-  switch (desc.kind) {
-    case TrajectoryKind::kStraight:
-      c.finite("start.north_m", desc.start.north_m, "m");
-      c.finite("start.east_m", desc.start.east_m, "m");
-      c.finite("start_heading", desc.start_heading, "rad");
-      c.range("straight_length_m", desc.straight_length_m, 0.0, true, kInf, true, "m");
-      break;
-    case TrajectoryKind::kWaypoints: {
-      c.finite("start.north_m", desc.start.north_m, "m");
-      c.finite("start.east_m", desc.start.east_m, "m");
-      c.finite("start_heading", desc.start_heading, "rad");
-      if (desc.waypoints.empty()) c.fail("waypoints: at least one waypoint is required");
-      NorthEast previous = desc.start;
-      for (std::size_t i = 0; i < desc.waypoints.size(); ++i) {
-        const NorthEast& w = desc.waypoints[i];
-        const std::string key = "waypoints[" + std::to_string(i) + "]";
-        c.finite(key + ".north_m", w.north_m, "m");
-        c.finite(key + ".east_m", w.east_m, "m");
-        const double gap = std::hypot(w.north_m - previous.north_m, w.east_m - previous.east_m);
-        if (std::isfinite(gap) && gap < kMinPointSeparationM) {
-          std::ostringstream os;
-          os << key << " = (" << w.north_m << ", " << w.east_m << "): is " << gap << " m from the "
-             << (i == 0 ? "start point" : "previous waypoint")
-             << "; consecutive points must be at least " << kMinPointSeparationM << " m apart";
-          c.fail(os.str());
-        }
-        previous = w;
-      }
-      break;
-    }
-    case TrajectoryKind::kLawnmower:
-      c.finite("lawnmower.origin.north_m", desc.lawnmower.origin.north_m, "m");
-      c.finite("lawnmower.origin.east_m", desc.lawnmower.origin.east_m, "m");
-      c.finite("lawnmower.first_leg_heading", desc.lawnmower.first_leg_heading, "rad");
-      c.range("lawnmower.leg_length_m", desc.lawnmower.leg_length_m, 0.0, true, kInf, true, "m");
-      c.range("lawnmower.line_spacing_m", desc.lawnmower.line_spacing_m, 0.0, true, kInf, true,
-              "m");
-      if (desc.lawnmower.legs < 1 || desc.lawnmower.legs > kMaxLegs) {
-        c.fail("lawnmower.legs = " + std::to_string(desc.lawnmower.legs) + ": must be in [1, " +
-               std::to_string(kMaxLegs) + "]");
-      }
-      break;
-  }
-
-  c.range("speed_m_s", desc.speed_m_s, 0.0, true, kMaxSpeedMPerS, false, "m/s");
-  c.range("max_turn_rate_rad_s", desc.max_turn_rate_rad_s, 0.0, true, kMaxTurnRateRadPerS, false,
-          "rad/s");
-
-  const DepthDesc& d = desc.depth;
-  if (d.mode == DepthMode::kConstantDepth) {
-    c.range("depth.depth_m", d.depth_m, 0.0, false, kInf, true, "m");
-  } else {
-    c.range("depth.altitude_m", d.altitude_m, 0.0, true, kInf, true, "m");
-    c.range("depth.max_climb_rate_m_s", d.max_climb_rate_m_s, 0.0, true, kMaxSpeedMPerS, false,
-            "m/s");
-    c.range("depth.look_ahead_m", d.look_ahead_m, 0.0, false, kInf, true, "m");
-    c.range("depth.min_depth_m", d.min_depth_m, 0.0, false, kInf, true, "m");
-    c.range("depth.vertical_smoothing_m", d.vertical_smoothing_m, 0.0, false, 1000.0, false, "m");
-  }
-  // the step is used in both modes (altitude along the path is precomputed when the seabed is
-  // known)
-  c.range("depth.profile_step_m", d.profile_step_m, 0.05, false, 10.0, false, "m");
-
-  const SwayDesc& s = desc.sway;
-  c.range("sway.amplitude_m", s.amplitude_m, 0.0, false, kInf, true, "m");
-  if (s.amplitude_m > 0.0) {
-    c.range("sway.period_s", s.period_s, 0.0, true, kInf, true, "s");
-    c.finite("sway.phase", s.phase, "rad");
-    c.range("sway.yaw_coupling", s.yaw_coupling, 0.0, false, 1.0, false, "");
-  }
-
-  const AttitudeDesc& a = desc.attitude;
-  c.range("attitude.roll_gain", a.roll_gain, -kMaxRollGain, false, kMaxRollGain, false, "");
-  c.range("attitude.max_roll", a.max_roll, 0.0, true, kPi / 2, true, "rad");
-  c.range("attitude.roll_time_constant_s", a.roll_time_constant_s, 0.0, false, kMaxNoiseStepS,
-          false, "s");
-  c.range("attitude.pitch_gain", a.pitch_gain, 0.0, false, kMaxPitchGain, false, "");
-  c.range("attitude.max_pitch", a.max_pitch, 0.0, true, kPi / 2, true, "rad");
-  return c.take();
+std::vector<Problem> validate(const TrajectoryDesc& desc, std::string_view prefix) {
+  std::vector<Problem> problems;
+  apply_rules(trajectory_rules(), desc, prefix, problems);
+  if (desc.kind == TrajectoryKind::kWaypoints) check_waypoints(desc, prefix, problems);
+  return problems;
 }
 
-std::vector<std::string> validate(const NavNoiseDesc& desc, std::string_view prefix) {
-  Checker c(prefix);
-  c.range("position_noise_sd_m", desc.position_noise_sd_m, 0.0, false, kInf, true, "m");
-  c.range("position_drift_m_per_sqrt_s", desc.position_drift_m_per_sqrt_s, 0.0, false, kInf, true,
-          "m/sqrt(s)");
-  c.range("heading_bias", desc.heading_bias, -std::numbers::pi, false, std::numbers::pi, false,
-          "rad");
-  c.range("heading_noise_sd", desc.heading_noise_sd, 0.0, false, kInf, true, "rad");
-  c.range("heading_drift_rad_per_sqrt_s", desc.heading_drift_rad_per_sqrt_s, 0.0, false, kInf, true,
-          "rad/sqrt(s)");
-  c.range("attitude_noise_sd", desc.attitude_noise_sd, 0.0, false, kInf, true, "rad");
-  c.range("speed_noise_sd_m_s", desc.speed_noise_sd_m_s, 0.0, false, kInf, true, "m/s");
-  c.range("speed_scale_factor_error", desc.speed_scale_factor_error, -kMaxScaleFactorError, true,
-          kMaxScaleFactorError, true, "");
-  c.range("yaw_rate_noise_sd_rad_s", desc.yaw_rate_noise_sd_rad_s, 0.0, false, kInf, true, "rad/s");
-  c.range("depth_noise_sd_m", desc.depth_noise_sd_m, 0.0, false, kInf, true, "m");
-  c.range("altitude_noise_sd_m", desc.altitude_noise_sd_m, 0.0, false, kInf, true, "m");
-  // at least 1 ns: the steps are used as integer nanoseconds
-  c.range("noise_step_s", desc.noise_step_s, 1e-9, false, kMaxNoiseStepS, false, "s");
-  c.range("drift_step_s", desc.drift_step_s, 1e-9, false, kMaxNoiseStepS, false, "s");
-  return c.take();
+std::vector<Problem> validate(const NavNoiseDesc& desc, std::string_view prefix) {
+  std::vector<Problem> problems;
+  apply_rules(nav_rules(), desc, prefix, problems);
+  return problems;
 }
 
-std::vector<std::string> validate(const VehicleDesc& desc) {
-  std::vector<std::string> errors = validate(desc.trajectory, "trajectory");
-  std::vector<std::string> nav = validate(desc.nav, "nav");
-  errors.insert(errors.end(), nav.begin(), nav.end());
-  return errors;
+std::vector<Problem> validate(const VehicleDesc& desc) {
+  std::vector<Problem> problems = validate(desc.trajectory, "trajectory");
+  std::vector<Problem> nav = validate(desc.nav, "nav");
+  problems.insert(problems.end(), std::make_move_iterator(nav.begin()),
+                  std::make_move_iterator(nav.end()));
+  return problems;
+}
+
+std::optional<Limit> limit_of(std::string_view field) {
+  constexpr std::string_view kTrajectory = "trajectory.";
+  constexpr std::string_view kNav = "nav.";
+  if (field.starts_with(kTrajectory)) {
+    return find_rule(trajectory_rules(), field.substr(kTrajectory.size()));
+  }
+  if (field.starts_with(kNav)) return find_rule(nav_rules(), field.substr(kNav.size()));
+  return std::nullopt;
 }
 
 }  // namespace sonarloop::vehicle

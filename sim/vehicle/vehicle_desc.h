@@ -14,6 +14,8 @@
 #include <string_view>
 #include <vector>
 
+#include "sim/core/validation.h"
+
 namespace sonarloop::vehicle {
 
 // A horizontal position in W (metres north and east of the scenario origin).
@@ -73,6 +75,8 @@ struct DepthDesc {
 
 // Optional sinusoidal sway: a lateral offset y(t) = amplitude_m·sin(2π·t/period_s + phase),
 // positive to starboard of the planned path (as from waves or a cross-track control loop).
+// validate() checks every field whatever the amplitude, so that a description is valid or not
+// independently of whether sway is switched on.
 struct SwayDesc {
   double amplitude_m = 0.0;  // 0 = no sway; >= 0; typically 0-2 m
   double period_s = 10.0;    // > 0; typically 5-60 s
@@ -165,13 +169,19 @@ std::optional<TrajectoryKind> trajectory_kind_from_string(std::string_view name)
 std::optional<TurnDirection> turn_direction_from_string(std::string_view name);
 std::optional<DepthMode> depth_mode_from_string(std::string_view name);
 
-// Every violation of the hard limits above, one message each, naming the key (dotted path from
-// the struct, e.g. "trajectory.lawnmower.leg_length_m"), the value and what is allowed. Empty =
-// valid. Only the fields of the selected kind and depth mode are checked. Geometry that can only
-// be judged on the planned path (its length) is checked by Trajectory's constructor.
-std::vector<std::string> validate(const TrajectoryDesc& desc,
-                                  std::string_view prefix = "trajectory");
-std::vector<std::string> validate(const NavNoiseDesc& desc, std::string_view prefix = "nav");
-std::vector<std::string> validate(const VehicleDesc& desc);
+// Every violation of the hard limits above, one Problem each (sim/core/validation.h): the field's
+// dotted path from the struct with `prefix` in front (e.g. "trajectory.lawnmower.leg_length_m"),
+// its value and the allowed range, in SI units. Empty = valid. Only the fields of the selected
+// kind and depth mode are checked. Geometry that can only be judged on the planned path (its
+// length) is checked by Trajectory's constructor.
+std::vector<Problem> validate(const TrajectoryDesc& desc, std::string_view prefix = "trajectory");
+std::vector<Problem> validate(const NavNoiseDesc& desc, std::string_view prefix = "nav");
+std::vector<Problem> validate(const VehicleDesc& desc);
+
+// The hard limit validate() applies to a number field, by the path it reports for a VehicleDesc
+// ("trajectory.attitude.max_roll", "trajectory.lawnmower.legs", "nav.noise_step_s"); nullopt for
+// a field without one (a waypoint, an enum). Lets a loader say what is allowed before it has a
+// whole description, e.g. when a value is not a number at all.
+std::optional<Limit> limit_of(std::string_view field);
 
 }  // namespace sonarloop::vehicle

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "atr/chip.h"
-#include "sim/core/rng.h"
+#include "common/rng.h"
 
 namespace sonarloop::testing {
 

@@ -10,10 +10,10 @@
 #include <span>
 #include <vector>
 
+#include "common/geodesy.h"
+#include "common/rng.h"
 #include "drivers/xtf/xtf_codec.h"
 #include "drivers/xtf/xtf_types.h"
-#include "sim/core/geodesy.h"
-#include "sim/core/rng.h"
 
 namespace sonarloop::testing {
 

@@ -4,6 +4,7 @@
 // every shipped scenario loads, and config/reference.yaml gives exactly the documented defaults.
 // (vehicle_loader_test covers the vehicle section key by key.)
 #include "config/loader/scenario_loader.h"
+#include "tests/config/config_error_checks.h"
 
 #include <catch2/catch.hpp>
 #include <filesystem>
@@ -22,30 +23,15 @@ namespace render = sonarloop::render;
 namespace acoustics = sonarloop::acoustics;
 namespace scene = sonarloop::scene;
 
+using sonarloop::testing::contains;
+
 namespace {
 
-bool contains(const std::string& s, const std::string& part) {
-  return s.find(part) != std::string::npos;
-}
-
+// Parses `yaml` as "scenario.yaml", which must fail (testing::check_config_error).
 ConfigIssue expect_error(const std::string& yaml, const std::string& path,
                          const std::vector<std::string>& parts = {}) {
-  INFO("yaml:\n" << yaml);
-  try {
-    parse_scenario(yaml, "scenario.yaml");
-  } catch (const ConfigError& e) {
-    const std::string msg = e.what();
-    INFO("message: " << msg);
-    const std::string shown = path.empty() ? "(top level)" : path;
-    CHECK(msg.rfind("scenario.yaml: " + shown + ": ", 0) == 0);
-    CHECK(e.first().path == path);
-    CHECK(contains(msg, "; allowed: "));
-    for (const auto& p : parts)
-      CHECK(contains(msg, p));
-    return e.first();
-  }
-  FAIL("accepted");
-  return {};
+  return sonarloop::testing::expect_config_error(parse_scenario, "scenario.yaml", yaml, path,
+                                                 parts);
 }
 
 void check_same(const render::SonarDesc& a, const render::SonarDesc& b) {

@@ -3,6 +3,7 @@
 // validation rule, and a seeded randomized test (docs/style.md habit 22) that round-trips random
 // valid sonars and checks that corruptions are always rejected with a ConfigError.
 #include "config/loader/sonar_loader.h"
+#include "tests/config/config_error_checks.h"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -18,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-#include "sim/core/rng.h"
+#include "common/rng.h"
 #include "sim/render/sonar.h"
 #include "tests/support/temp_dir.h"
 
@@ -28,6 +29,8 @@ using namespace sonarloop::config;
 namespace render = sonarloop::render;
 namespace acoustics = sonarloop::acoustics;
 namespace scene = sonarloop::scene;
+
+using sonarloop::testing::contains;
 
 namespace {
 
@@ -59,10 +62,6 @@ const std::vector<std::string> kKeys = {"name",
                                         "rays_per_bin",
                                         "along_track_rays"};
 
-bool contains(const std::string& s, const std::string& part) {
-  return s.find(part) != std::string::npos;
-}
-
 std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream ss;
@@ -70,26 +69,10 @@ std::string read_file(const std::string& path) {
   return ss.str();
 }
 
-// Parses `yaml` as "sonar.yaml", which must fail; checks the message form, that the first issue
-// is at `path`, and that every `parts` string is in the message.
+// Parses `yaml` as "sonar.yaml", which must fail (testing::check_config_error).
 ConfigIssue expect_error(const std::string& yaml, const std::string& path,
                          const std::vector<std::string>& parts = {}) {
-  INFO("yaml:\n" << yaml);
-  try {
-    parse_sonar(yaml, "sonar.yaml");
-  } catch (const ConfigError& e) {
-    const std::string msg = e.what();
-    INFO("message: " << msg);
-    const std::string shown = path.empty() ? "(top level)" : path;
-    CHECK(msg.rfind("sonar.yaml: " + shown + ": ", 0) == 0);
-    CHECK(e.first().path == path);
-    CHECK(contains(msg, "; allowed: "));
-    for (const auto& p : parts)
-      CHECK(contains(msg, p));
-    return e.first();
-  }
-  FAIL("accepted");
-  return {};
+  return sonarloop::testing::expect_config_error(parse_sonar, "sonar.yaml", yaml, path, parts);
 }
 
 // exact comparison, field by field

@@ -5,6 +5,7 @@
 // config/reference.yaml, and a seeded randomized test (docs/style.md habit 22) that round-trips
 // random valid vehicles and checks that corruptions are always rejected with a ConfigError.
 #include "config/loader/vehicle_loader.h"
+#include "tests/config/config_error_checks.h"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -19,8 +20,8 @@
 #include <utility>
 #include <vector>
 
+#include "common/rng.h"
 #include "config/loader/scenario_loader.h"
-#include "sim/core/rng.h"
 #include "sim/scene/scene.h"
 #include "sim/vehicle/nav_sensor.h"
 #include "sim/vehicle/path.h"
@@ -38,15 +39,13 @@ using vehicle::TrajectoryKind;
 using vehicle::TurnDirection;
 using vehicle::VehicleDesc;
 
+using sonarloop::testing::contains;
+
 namespace {
 
 // The loader's conversion: one multiplication by the double nearest π/180.
 double rad(double deg) {
   return deg * (std::numbers::pi / 180.0);
-}
-
-bool contains(const std::string& s, const std::string& part) {
-  return s.find(part) != std::string::npos;
 }
 
 std::string read_file(const std::string& path) {
@@ -56,45 +55,17 @@ std::string read_file(const std::string& path) {
   return ss.str();
 }
 
-// Checks a ConfigError's form: "<file>: <path>: ...; allowed: ...", the first issue at `path`,
-// and that every `parts` string is in the message.
-ConfigIssue check_error(const ConfigError& e, const std::string& file, const std::string& path,
-                        const std::vector<std::string>& parts) {
-  const std::string msg = e.what();
-  INFO("message: " << msg);
-  const std::string shown = path.empty() ? "(top level)" : path;
-  CHECK(msg.rfind(file + ": " + shown + ": ", 0) == 0);
-  CHECK(e.first().path == path);
-  CHECK(contains(msg, "; allowed: "));
-  for (const auto& p : parts)
-    CHECK(contains(msg, p));
-  return e.first();
-}
-
 // Parses `yaml` as a standalone vehicle "vehicle.yaml", which must fail.
 ConfigIssue expect_error(const std::string& yaml, const std::string& path,
                          const std::vector<std::string>& parts = {}) {
-  INFO("yaml:\n" << yaml);
-  try {
-    parse_vehicle(yaml, "vehicle.yaml");
-  } catch (const ConfigError& e) {
-    return check_error(e, "vehicle.yaml", path, parts);
-  }
-  FAIL("accepted");
-  return {};
+  return sonarloop::testing::expect_config_error(parse_vehicle, "vehicle.yaml", yaml, path, parts);
 }
 
 // Parses `yaml` as a scenario "scenario.yaml", which must fail.
 ConfigIssue expect_scenario_error(const std::string& yaml, const std::string& path,
                                   const std::vector<std::string>& parts = {}) {
-  INFO("yaml:\n" << yaml);
-  try {
-    parse_scenario(yaml, "scenario.yaml");
-  } catch (const ConfigError& e) {
-    return check_error(e, "scenario.yaml", path, parts);
-  }
-  FAIL("accepted");
-  return {};
+  return sonarloop::testing::expect_config_error(parse_scenario, "scenario.yaml", yaml, path,
+                                                 parts);
 }
 
 VehicleDesc parse_ok(const std::string& yaml) {
@@ -668,11 +639,52 @@ TEST_CASE("vehicle_loader: out-of-range values name the file, key, value and ran
                         {"25 is out of range (line 4, column 16)", "allowed: > 0 and <= 20"});
 }
 
+TEST_CASE("vehicle_loader: validate()'s limits are reported at the YAML key, in its unit") {
+  // degrees: the key, its line and column, the value as written, the range in degrees
+  const std::string roll = "trajectory:\n  attitude:\n    max_roll_deg: 95\n";
+  try {
+    parse_vehicle(roll, "vehicle.yaml");
+    FAIL("accepted");
+  } catch (const ConfigError& e) {
+    CHECK(std::string(e.what()) ==
+          "vehicle.yaml: trajectory.attitude.max_roll_deg: 95 is out of range (line 3, column 19); "
+          "allowed: > 0 and < 90");
+    CHECK(e.first().line == 3);
+  }
+  // a value that is not a number is told the same range
+  expect_error("trajectory: {attitude: {max_pitch_deg: steep}}\n",
+               "trajectory.attitude.max_pitch_deg",
+               {"'steep' is not a number", "allowed: a number > 0 and < 90"});
+  expect_error("nav: {heading_bias_deg: [1]}\n", "nav.heading_bias_deg",
+               {"allowed: a number -180 .. 180"});
+  // a bound with no short decimal in degrees is also given in SI
+  expect_error("trajectory: {max_turn_rate_deg_s: 120}\n", "trajectory.max_turn_rate_deg_s",
+               {"120 is out of range (line 1, column 35)",
+                "allowed: > 0 and <= 114.59155902616465 (2 rad/s)"});
+  // every violation, one issue each, in validate()'s order, each at its own line
+  try {
+    parse_vehicle(
+        "trajectory:\n  speed_m_s: 0\n  attitude: {max_roll_deg: 0}\n"
+        "nav:\n  heading_noise_deg: -1\n",
+        "v.yaml");
+    FAIL("accepted");
+  } catch (const ConfigError& e) {
+    REQUIRE(e.issues().size() == 3);
+    CHECK(e.issues()[0].path == "trajectory.speed_m_s");
+    CHECK(e.issues()[0].line == 2);
+    CHECK(e.issues()[1].path == "trajectory.attitude.max_roll_deg");
+    CHECK(e.issues()[1].line == 3);
+    CHECK(e.issues()[2].path == "nav.heading_noise_deg");
+    CHECK(e.issues()[2].allowed == ">= 0");
+    CHECK(e.issues()[2].line == 5);
+  }
+}
+
 TEST_CASE("vehicle_loader: validate()'s cross-field rules become errors at the YAML key") {
   const std::string w = "trajectory:\n  kind: waypoints\n  start_m: [0, 0]\n  waypoints_m: ";
   auto i = expect_error(w + "[[0, 0.005]]\n", "trajectory.waypoints_m[0]",
                         {"a list [0, 0.005] is rejected by the vehicle model: "
-                         "trajectory.waypoints[0] = (0, 0.005): is 0.005 m from the start point",
+                         "trajectory.waypoints[0]: (0, 0.005) is 0.005 m from the start point",
                          "allowed: [north, east]; consecutive points (start_m included) at "
                          "least 0.01 m apart"});
   CHECK(i.line == 4);

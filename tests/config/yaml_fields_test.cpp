@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/core/rng.h"
+#include "common/rng.h"
 #include "tests/support/temp_dir.h"
 
 using sonarloop::Rng;

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/geodesy.h"
 #include "config/loader/scenario_loader.h"
 #include "drivers/can/candump_log.h"
 #include "drivers/n2k/messages.h"
@@ -22,7 +23,6 @@
 #include "drivers/xtf/xtf_file.h"
 #include "emulator/emulator.h"
 #include "emulator/pose_message.h"
-#include "sim/core/geodesy.h"
 #include "sim/vehicle/nav_sensor.h"
 #include "sim/vehicle/trajectory.h"
 #include "tests/emulator/test_scenario.h"

@@ -5,28 +5,18 @@
 #include <stdexcept>
 #include <thread>
 
+#include "common/rng.h"
 #include "emulator/pacer.h"
-#include "sim/core/rng.h"
+#include "tests/support/simulated_clock.h"
 
 using namespace sonarloop;
 using namespace sonarloop::emulator;
+using sonarloop::testing::SimulatedClock;
 
 namespace {
 
-// A clock that only moves when told to: sleep_until jumps to the deadline.
-class SimulatedClock final : public Clock {
- public:
-  std::int64_t now_ns() const override { return now_; }
-  std::int64_t utc_now_ns() const override { return 1'700'000'000'000'000'000 + now_; }
-  std::int64_t process_cpu_ns() const override { return 0; }
-  void sleep_until(std::int64_t deadline_ns) override {
-    if (deadline_ns > now_) now_ = deadline_ns;
-  }
-  void advance(std::int64_t ns) { now_ += ns; }
-
- private:
-  std::int64_t now_ = 5'000'000'000;
-};
+// The simulated clock's time at the start of each test: any time well away from 0 will do.
+constexpr std::int64_t kClockStartNs = 5'000'000'000;
 
 }  // namespace
 
@@ -55,7 +45,7 @@ TEST_CASE("next_deadline: after an overrun it resyncs to the first grid point at
 TEST_CASE("next_deadline never accumulates drift: 100000 events with random lateness") {
   // a loop that handles each event up to 0.9 period late: every deadline is exactly k·period
   const SimTime period = 66'666'667;  // not a divisor of anything round
-  SimulatedClock clock;
+  SimulatedClock clock(kClockStartNs);
   const std::int64_t start = clock.now_ns();
   sonarloop::Rng rng(42);
   SimTime deadline = 0;
@@ -74,7 +64,7 @@ TEST_CASE("next_deadline never accumulates drift: 100000 events with random late
 
 TEST_CASE("next_deadline resyncs after overruns and then runs on time again, on the same grid") {
   const SimTime period = 10'000'000;
-  SimulatedClock clock;
+  SimulatedClock clock(kClockStartNs);
   const std::int64_t start = clock.now_ns();
   SimTime deadline = 0;
   std::int64_t skipped = 0, handled = 0;
@@ -103,7 +93,7 @@ TEST_CASE("ping_window: wait, send, drop") {
 }
 
 TEST_CASE("Pacer maps simulation time to wall time with absolute deadlines") {
-  SimulatedClock clock;
+  SimulatedClock clock(kClockStartNs);
   Pacer realtime(clock, parse_rate("realtime"));
   realtime.start();
   const std::int64_t w0 = clock.now_ns();

@@ -11,8 +11,10 @@
 #include <vector>
 
 #include "emulator/render_queue.h"
+#include "tests/support/simulated_clock.h"
 
 using namespace sonarloop::emulator;
+using sonarloop::testing::SimulatedClock;
 
 namespace {
 
@@ -99,25 +101,11 @@ class AheadProducer final : public PingProducer {
   Gate gate_;
 };
 
-// A clock that only moves when told.
-class ManualClock final : public Clock {
- public:
-  std::int64_t now_ns() const override { return now_.load(); }
-  std::int64_t utc_now_ns() const override { return now_.load(); }
-  std::int64_t process_cpu_ns() const override { return 0; }
-  void sleep_until(std::int64_t deadline_ns) override {
-    now_.store(std::max(now_.load(), deadline_ns));
-  }
-  void advance(std::int64_t ns) { now_.fetch_add(ns); }
-
- private:
-  std::atomic<std::int64_t> now_{0};
-};
-
-// Each ping takes `render_ns` of the manual clock; records when each one was finished.
+// Each ping takes `render_ns` of the simulated clock; records when each one was finished.
 class SlowProducer final : public PingProducer {
  public:
-  SlowProducer(ManualClock& clock, std::int64_t render_ns) : clock_(clock), render_ns_(render_ns) {}
+  SlowProducer(SimulatedClock& clock, std::int64_t render_ns)
+      : clock_(clock), render_ns_(render_ns) {}
   void produce(std::int64_t k, int, PingSlot& slot) override {
     clock_.advance(render_ns_);
     slot.produce_ns = render_ns_;
@@ -131,7 +119,7 @@ class SlowProducer final : public PingProducer {
   }
 
  private:
-  ManualClock& clock_;
+  SimulatedClock& clock_;
   std::int64_t render_ns_;
   std::mutex mu_;
   std::vector<std::pair<std::int64_t, std::int64_t>> finished_;
@@ -273,7 +261,7 @@ TEST_CASE("RenderQueue: an error in the work ahead stops the queue and is report
 TEST_CASE(
     "RenderQueue: when rendering is slower than the pings, workers render pings they can deliver") {
   // pings given up every 10 ms, each render takes 25 ms: one worker can deliver one in three
-  ManualClock clock;
+  SimulatedClock clock;
   SlowProducer p(clock, 25'000'000);
   RenderQueue q(p, 64, 1, 16);
   auto give_up = [](std::int64_t k) { return (k + 1) * 10'000'000; };

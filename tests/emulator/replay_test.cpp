@@ -19,10 +19,12 @@
 #include "drivers/net/udp_receiver.h"
 #include "drivers/net/udp_sender.h"
 #include "drivers/xtf/xtf_file.h"
+#include "tests/support/simulated_clock.h"
 #include "tests/support/temp_dir.h"
 
 using namespace sonarloop;
 using namespace sonarloop::emulator;
+using sonarloop::testing::SimulatedClock;
 using sonarloop::testing::TempDir;
 
 namespace {
@@ -32,19 +34,9 @@ const std::string kRealXtf =
 constexpr std::size_t kRealPings = 461;
 constexpr std::int64_t kMs = 1'000'000;
 
-// A simulated clock: sleep_until() jumps to the deadline. Every send then happens exactly at its
-// deadline, so the deadlines themselves can be checked (no wall clock involved).
-class SimulatedClock final : public ReplayClock {
- public:
-  explicit SimulatedClock(std::int64_t start_ns = 1'000'000'000'000) : now_(start_ns) {}
-  std::int64_t now_ns() override { return now_; }
-  void sleep_until(std::int64_t t_ns) override {
-    ++sleeps;
-    if (t_ns > now_) now_ = t_ns;
-  }
-  std::int64_t now_ = 0;
-  int sleeps = 0;
-};
+// Every send of a replay on the simulated clock happens exactly at its deadline, so the deadlines
+// themselves can be checked (no wall clock involved). Started well away from 0.
+constexpr std::int64_t kClockStartNs = 1'000'000'000'000;
 
 std::vector<std::uint8_t> slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -83,7 +75,7 @@ bool is_file_header_datagram(const std::vector<std::uint8_t>& d) {
 // A CAN transport that records what it is given, with the clock's time at each send.
 class RecordingTransport final : public can::CanTransport {
  public:
-  explicit RecordingTransport(ReplayClock* clock = nullptr) : clock_(clock) {}
+  explicit RecordingTransport(Clock* clock = nullptr) : clock_(clock) {}
   void send(const can::CanFrame& frame, std::int64_t t_ns) override {
     frames.push_back({t_ns, frame});
     sent_at.push_back(clock_ ? clock_->now_ns() : 0);
@@ -95,7 +87,7 @@ class RecordingTransport final : public can::CanTransport {
   int flushes = 0;
 
  private:
-  ReplayClock* clock_;
+  Clock* clock_;
 };
 
 // A small candump log: 40 frames at irregular intervals, plus one remote and one FD frame
@@ -264,7 +256,7 @@ TEST_CASE("replay xtf: the real recording at --rate max over UDP on 127.0.0.1 ar
     }
   });
   net::UdpSender tx(net::HostPort{"127.0.0.1", rx.bound_port()});
-  MonotonicReplayClock clock;
+  MonotonicClock clock;
   ReplayOptions options;
   options.rate.max = true;
   const ReplaySummary s = replay_xtf(
@@ -305,7 +297,7 @@ TEST_CASE("replay xtf: sends happen at the pings' recorded times / rate (simulat
   const XtfTimeline tl = read_xtf_timeline(kRealXtf);
   const xtf::XtfFileContents contents = xtf::read_all_pings(kRealXtf);
   const std::int64_t t0 = *xtf::time_utc_ns(contents.pings.front().header);
-  SimulatedClock clock;
+  SimulatedClock clock(kClockStartNs);
   const std::int64_t start = clock.now_ns();
   std::vector<std::int64_t> ping_sent_at;
   std::vector<std::int64_t> header_sent_at;
@@ -352,7 +344,7 @@ TEST_CASE("replay xtf: sends happen at the pings' recorded times / rate (simulat
 }
 
 TEST_CASE("replay xtf: a stop request ends the replay after the current packet") {
-  SimulatedClock clock;
+  SimulatedClock clock(kClockStartNs);
   std::atomic<bool> stop{false};
   int pings = 0;
   ReplayOptions options;
@@ -389,7 +381,7 @@ TEST_CASE("replay xtf: a ping with a corrupt year is paced by the ping period, w
   }
   REQUIRE(corrupt_offset > 0);
   write_bytes(dir.file("corrupt.xtf"), bytes);
-  SimulatedClock clock;
+  SimulatedClock clock(kClockStartNs);
   std::vector<std::string> warnings;
   ReplayOptions options;
   options.rate.factor = 10.0;
@@ -406,7 +398,7 @@ TEST_CASE("replay xtf: a ping with a corrupt year is paced by the ping period, w
 }
 
 TEST_CASE("replay xtf: packets too large for a datagram are skipped and reported") {
-  SimulatedClock clock;
+  SimulatedClock clock(kClockStartNs);
   std::vector<std::string> warnings;
   ReplayOptions options;
   options.rate.max = true;
@@ -430,7 +422,7 @@ TEST_CASE("replay xtf: refused datagrams (nobody listening) are counted, not fat
     port = probe.bound_port();
   }
   net::UdpSender tx(net::HostPort{"127.0.0.1", port});
-  SimulatedClock clock;
+  SimulatedClock clock(kClockStartNs);
   std::vector<std::string> warnings;
   ReplayOptions options;
   options.rate.max = true;
@@ -447,7 +439,7 @@ TEST_CASE("replay xtf: truncated, corrupt and missing files are errors before an
   const std::vector<std::uint8_t> file = slurp(kRealXtf);
   int sent = 0;
   const DatagramSink count = [&](std::span<const std::uint8_t>) { return ++sent > 0; };
-  SimulatedClock clock;
+  SimulatedClock clock(kClockStartNs);
 
   // cut inside the 11th packet
   const std::uint64_t packet10 = 1024 + 10 * 4480;
@@ -506,7 +498,7 @@ TEST_CASE("replay candump: a log:FILE transport gets the same frames with their 
   write_text(dir.file("in.log"), log.text);
   auto out = can::open_can_transport("log:" + dir.file("out.log"));
   can::CanTransport* transports[] = {out.get()};
-  MonotonicReplayClock clock;
+  MonotonicClock clock;
   ReplayOptions options;
   options.rate.max = true;
   std::vector<std::string> warnings;
@@ -537,7 +529,7 @@ TEST_CASE("replay candump: frames go out at their logged offsets / rate (simulat
   TempDir dir("replay-candump-timing");
   const TestLog log = make_test_log();
   write_text(dir.file("in.log"), log.text);
-  SimulatedClock clock;
+  SimulatedClock clock(kClockStartNs);
   const std::int64_t start = clock.now_ns();
   RecordingTransport a(&clock), b(&clock);
   can::CanTransport* transports[] = {&a, &b};
@@ -586,7 +578,7 @@ TEST_CASE("replay candump: a malformed line is an error with its line number, no
     pos = end + 1;
   }
   write_text(dir.file("bad.log"), text);
-  SimulatedClock clock;
+  SimulatedClock clock(kClockStartNs);
   RecordingTransport t(&clock);
   can::CanTransport* transports[] = {&t};
   CHECK_THROWS_WITH(replay_candump(dir.file("bad.log"), transports, clock),
@@ -604,7 +596,7 @@ TEST_CASE("replay candump: a last line torn by a crash is ignored with a warning
       static_cast<std::size_t>(std::count(log.text.begin(), log.text.end(), '\n'));
   // torn inside the data: it would even parse, as a shorter frame
   write_text(dir.file("torn.log"), log.text + "(1700000000.000000) vcan0 09F80199#0102");
-  SimulatedClock clock;
+  SimulatedClock clock(kClockStartNs);
   RecordingTransport t(&clock);
   can::CanTransport* transports[] = {&t};
   std::vector<std::string> warnings;
@@ -670,7 +662,7 @@ sys.exit(0 if len(got) == len(want) and bad == 0 else 1)
     FAIL("python-can did not connect (exit code " << rc << ")");
   }
   can::CanTransport* transports[] = {&server};
-  MonotonicReplayClock clock;
+  MonotonicClock clock;
   ReplayOptions options;  // original timing: ~0.3 s
   options.on_warning = [](const std::string&) {};
   const ReplaySummary s = replay_candump(dir.file("in.log"), transports, clock, options);

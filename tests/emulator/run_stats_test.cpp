@@ -4,8 +4,8 @@
 #include <cstring>
 #include <vector>
 
+#include "common/rng.h"
 #include "emulator/run_stats.h"
-#include "sim/core/rng.h"
 
 using namespace sonarloop::emulator;
 

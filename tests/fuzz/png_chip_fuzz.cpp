@@ -1,8 +1,8 @@
-// The PNG and JPEG chip reader (atr/chip_folder.h, drivers/image/png.h, jpeg.h) on a file holding
+// The PNG and JPEG chip reader (study/chip_folder.h, drivers/image/png.h, jpeg.h) on a file holding
 // the input.
 #include <exception>
 
-#include "atr/chip_folder.h"
+#include "study/chip_folder.h"
 #include "tests/fuzz/fuzz_support.h"
 
 using namespace sonarloop;
@@ -10,7 +10,7 @@ using namespace sonarloop;
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string& path = fuzz::write_input_file(data, size, ".png");
   try {
-    (void)atr::read_chip_file(path);
+    (void)study::read_chip_file(path);
   } catch (const std::exception&) {
   }
   return 0;

@@ -19,8 +19,8 @@
 #include <thread>
 #include <vector>
 
+#include "common/geodesy.h"
 #include "config/loader/scenario_loader.h"
-#include "sim/core/geodesy.h"
 #include "sim/targets/target_type.h"
 #include "tests/support/temp_dir.h"
 

@@ -23,6 +23,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/geodesy.h"
 #include "config/loader/scenario_loader.h"
 #include "drivers/can/candump_log.h"
 #include "drivers/can/socketcan.h"
@@ -31,7 +32,6 @@
 #include "drivers/xtf/xtf_codec.h"
 #include "drivers/xtf/xtf_file.h"
 #include "emulator/emulator.h"
-#include "sim/core/geodesy.h"
 #include "sim/vehicle/nav_sensor.h"
 #include "sim/vehicle/trajectory.h"
 #include "tests/emulator/test_scenario.h"

@@ -36,7 +36,7 @@
 
 #include "atr/contact.h"
 #include "atr/packet_queue.h"
-#include "sim/core/geodesy.h"
+#include "common/geodesy.h"
 
 namespace sonarloop::web {
 

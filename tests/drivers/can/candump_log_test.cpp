@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/core/rng.h"
+#include "common/rng.h"
 #include "tests/support/temp_dir.h"
 
 using namespace sonarloop::can;

@@ -2,7 +2,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "sim/core/rng.h"
+#include "common/rng.h"
 
 using namespace sonarloop::n2k;
 

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <string>
 
-#include "sim/core/rng.h"
+#include "common/rng.h"
 
 using namespace sonarloop::n2k;
 

@@ -9,7 +9,7 @@
 
 #include <sys/socket.h>
 
-#include "sim/core/rng.h"
+#include "common/rng.h"
 #include "tests/support/skip.h"
 
 using namespace sonarloop::net;

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "sim/core/rng.h"
+#include "common/rng.h"
 
 using namespace sonarloop::acoustics;
 using Catch::Matchers::WithinAbs;

@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "sim/core/rng.h"
+#include "common/rng.h"
 #include "sim/targets/target_type.h"
 
 using namespace sonarloop;

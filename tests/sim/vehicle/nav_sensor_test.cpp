@@ -10,7 +10,7 @@
 #include <thread>
 #include <vector>
 
-#include "sim/core/rng.h"
+#include "common/rng.h"
 #include "sim/vehicle/angles.h"
 #include "sim/vehicle/trajectory.h"
 

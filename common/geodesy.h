@@ -22,12 +22,12 @@
 // Δλ² term is the convergence of the meridians). to_geodetic() inverts the series by Newton's
 // method (converges in 3-4 steps, since the non-linear terms are ~1e-3 of the linear ones).
 //
-// Accuracy (against the exact ECEF -> ENU route, tests/sim/core/geodesy_test.cpp): the truncated
+// Accuracy (against the exact ECEF -> ENU route, tests/common/geodesy_test.cpp): the truncated
 // fourth-order terms grow like d⁴ and steeply with latitude: for points within d = 5 km of the
 // origin the error is below 0.001 mm at latitude 56°, 0.03 mm at 80° and 0.2 mm at 85°; 1 cm is
 // reached near d = 13 km at 85°, 20 km at 80° and 50 km at 56°. Validity: |origin latitude| <=
 // kMaxOriginLatitudeDeg (the Δλ expansion degenerates towards the poles).
-#include "sim/frames.h"
+#include "common/vectors.h"
 
 namespace sonarloop {
 

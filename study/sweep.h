@@ -51,7 +51,7 @@
 #include "atr/subspace_classifier.h"
 #include "sim/render/chip_renderer.h"
 
-namespace sonarloop::atr {
+namespace sonarloop::study {
 
 // Seed offset of the test dataset against the training dataset.
 inline constexpr std::uint64_t kTestSeedOffset = 1;
@@ -63,19 +63,19 @@ struct ErrorRate {
   std::size_t n = 0;
   std::size_t errors = 0;
   double rate = 0.0;  // errors / n (0 when n = 0)
-  Interval ci;        // of the error rate
+  atr::Interval ci;   // of the error rate
 };
-ErrorRate error_rate(std::size_t errors, std::size_t n, double z = kZ95);
+ErrorRate error_rate(std::size_t errors, std::size_t n, double z = atr::kZ95);
 
 // A rendered chip as a classifier chip: pixels 0..255 as float, label = target key, aspect.
-LabelledChip labelled_chip(const render::ChipImage& c);
+atr::LabelledChip labelled_chip(const render::ChipImage& c);
 
 // What the command line sets.
 struct SweepSettings {
   std::uint64_t seed = 0;
   int train_count = 80;  // per class and condition (the paper: 80)
   int test_count = 100;  // per class and condition (the paper: 10,000)
-  int p = kDefaultSubspaceDim;
+  int p = atr::kDefaultSubspaceDim;
   std::vector<double> resolutions_cm;  // empty: each experiment's own list
   // fig13's non-mine shapes (sim/targets/target_type.h); default: the paper's four
   std::vector<targets::TargetType> non_mine = {
@@ -85,7 +85,7 @@ struct SweepSettings {
   render::SonarDesc sonar;
   render::RendererKind renderer = render::RendererKind::kProfile;
   // every condition's chip pre-processing (the ablation sets its own); default none, as the paper
-  ChipPreprocess preprocess;
+  atr::ChipPreprocess preprocess;
   // highlight experiments crop each resolution's chips by adaptive_crop_fraction (overrides
   // preprocess.crop_fraction; not the ablation, not shadow chips)
   bool crop_auto = false;
@@ -108,21 +108,21 @@ struct SweepCondition {
   double burial_fraction = 0.0;  // of the TEST targets' height; training targets lie proud
   // training
   int train_count = 80;  // per class
-  int p = kDefaultSubspaceDim;
+  int p = atr::kDefaultSubspaceDim;
   int aspect_sectors = 1;
-  ChipPreprocess preprocess;  // the model's pre-processing (TrainOptions::preprocess)
+  atr::ChipPreprocess preprocess;  // the model's pre-processing (TrainOptions::preprocess)
   // open-set rejection: a class left out of training (index into the experiment's classes,
   // -1 none) and the calibration quantile (TrainOptions::reject_quantile, 0 off)
   int held_out = -1;
   double reject_quantile = 0.0;
   FusionInput fusion = FusionInput::kNone;  // the fusion experiment's conditions
-  FusionNorm fusion_norm = FusionNorm::kModelTypical;
+  atr::FusionNorm fusion_norm = atr::FusionNorm::kModelTypical;
 };
 
 struct SweepExperiment {
   std::string name;
   std::string title;
-  render::ChipKind kind = render::ChipKind::kHighlight;
+  chips::ChipKind kind = chips::ChipKind::kHighlight;
   std::vector<targets::TargetType> classes;
   bool mine_groups = false;               // also score the mine / non-mine decision
   int aspect_bins = 0;                    // > 0: also score per aspect bin
@@ -159,16 +159,16 @@ std::pair<render::ChipDatasetSpec, render::ChipDatasetSpec> fusion_specs(
     const SweepExperiment& e, const RenderGroup& g, const SweepSettings& settings, bool test);
 
 // A training set: the first count x classes chips of `chips` (count per class).
-std::vector<LabelledChip> training_prefix(const std::vector<LabelledChip>& chips, int count,
-                                          std::size_t classes);
+std::vector<atr::LabelledChip> training_prefix(const std::vector<atr::LabelledChip>& chips,
+                                               int count, std::size_t classes);
 // A condition's training set: its prefix, without the held-out class's chips.
-std::vector<LabelledChip> training_set(const std::vector<LabelledChip>& chips,
-                                       const SweepExperiment& e, const SweepCondition& c);
+std::vector<atr::LabelledChip> training_set(const std::vector<atr::LabelledChip>& chips,
+                                            const SweepExperiment& e, const SweepCondition& c);
 
 // The scores of one condition.
 struct ConditionResult {
   std::size_t condition = 0;
-  ConfusionMatrix confusion;
+  atr::ConfusionMatrix confusion;
   std::size_t mine_n = 0, mine_errors = 0;
   std::vector<std::size_t> aspect_n, aspect_errors;  // (classes x aspect bins), row-major
   std::vector<std::size_t> seabed_n, seabed_errors;  // (seabeds) identification per test seabed
@@ -183,13 +183,13 @@ struct ConditionResult {
   double classify_s_per_chip = 0.0;
   bool complete = false;  // every test chip was scored (false after Ctrl-C)
 
-  ConditionResult(std::size_t index, const SweepExperiment& e, const Model& m);
+  ConditionResult(std::size_t index, const SweepExperiment& e, const atr::Model& m);
 };
 
 // Scores one test chip: `truth` indexes e.classes, `seabed` e.seabed_names; r is the
 // classifier's answer.
-void score_chip(ConditionResult& out, const SweepExperiment& e, const Model& m, std::size_t truth,
-                double aspect_deg, int seabed, const Classification& r);
+void score_chip(ConditionResult& out, const SweepExperiment& e, const atr::Model& m,
+                std::size_t truth, double aspect_deg, int seabed, const atr::Classification& r);
 
 // CSV files (header line included). Rates in percent.
 //   results: experiment,series,x_name,x,resolution_cm,class,n,errors,error_pct,ci_low_pct,
@@ -205,4 +205,4 @@ std::string results_csv(const SweepExperiment& e, const std::vector<ConditionRes
 //   confusion: experiment,series,x_name,x,truth,predicted,count
 std::string confusion_csv(const SweepExperiment& e, const std::vector<ConditionResult>& results);
 
-}  // namespace sonarloop::atr
+}  // namespace sonarloop::study

@@ -1,4 +1,4 @@
-#include "sim/core/geodesy.h"
+#include "common/geodesy.h"
 
 #include <cmath>
 #include <numbers>

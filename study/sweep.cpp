@@ -1,11 +1,14 @@
-#include "atr/sweep.h"
+#include "study/sweep.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
-namespace sonarloop::atr {
+namespace sonarloop::study {
+
+// the classifier this study code trains and scores (atr/)
+using namespace sonarloop::atr;
 namespace {
 
 using targets::TargetType;
@@ -177,7 +180,7 @@ SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettin
     e.conditions = resolution_curve(s, highlight_resolutions_cm());
   } else if (name == "fig15") {
     e.title = "Fig. 15: identification from shadows against pixel resolution";
-    e.kind = render::ChipKind::kShadow;
+    e.kind = chips::ChipKind::kShadow;
     e.conditions = resolution_curve(s, shadow_resolutions_cm());
   } else if (name == "aspect") {
     // the same training chips (twice the usual count, so that an 8-sector subspace still
@@ -281,11 +284,11 @@ SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettin
       all += (all.empty() ? "" : ", ") + n;
     throw std::invalid_argument("unknown experiment '" + name + "' (allowed: " + all + ", all)");
   }
-  if (s.crop_auto && e.kind == render::ChipKind::kHighlight) {
+  if (s.crop_auto && e.kind == chips::ChipKind::kHighlight) {
     for (SweepCondition& c : e.conditions) {
       // fusion's shadow model shares the condition: it keeps its whole chip (cmd_sweep)
       c.preprocess.crop_fraction =
-          adaptive_crop_fraction(render::kHighlightChipRange_m, c.resolution_m);
+          adaptive_crop_fraction(chips::kHighlightChipRange_m, c.resolution_m);
     }
   }
   return e;
@@ -345,13 +348,13 @@ std::pair<render::ChipDatasetSpec, render::ChipDatasetSpec> fusion_specs(const S
                                                                          const SweepSettings& s,
                                                                          bool test) {
   render::ChipDatasetSpec highlight = render_group_spec(e, g, s, test);
-  highlight.kind = render::ChipKind::kHighlight;
+  highlight.kind = chips::ChipKind::kHighlight;
   // the shadow chips' range for both, so that chip i is the same object in both datasets
   // (chip_params draws every parameter for either kind)
-  highlight.range_min_m = render::kShadowGroundRange_m;
-  highlight.range_max_m = render::kShadowGroundRange_m;
+  highlight.range_min_m = chips::kShadowGroundRange_m;
+  highlight.range_max_m = chips::kShadowGroundRange_m;
   render::ChipDatasetSpec shadow = highlight;
-  shadow.kind = render::ChipKind::kShadow;
+  shadow.kind = chips::ChipKind::kShadow;
   return {highlight, shadow};
 }
 
@@ -532,4 +535,4 @@ std::string confusion_csv(const SweepExperiment& e, const std::vector<ConditionR
   return out;
 }
 
-}  // namespace sonarloop::atr
+}  // namespace sonarloop::study

@@ -6,13 +6,14 @@
 #include <string>
 #include <vector>
 
-#include "atr/chip_folder.h"
 #include "drivers/image/jpeg.h"
 #include "drivers/image/png.h"
+#include "study/chip_folder.h"
 #include "tests/support/temp_dir.h"
 
 using namespace sonarloop;
 using namespace sonarloop::atr;
+using namespace sonarloop::study;
 namespace fs = std::filesystem;
 
 namespace {

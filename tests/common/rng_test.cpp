@@ -1,4 +1,4 @@
-#include "sim/core/rng.h"
+#include "common/rng.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>

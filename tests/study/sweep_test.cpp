@@ -1,13 +1,14 @@
-// The pure parts of the resolution study (atr/sweep.h): rates and intervals, experiment
+// The pure parts of the resolution study (study/sweep.h): rates and intervals, experiment
 // definitions, render groups, training prefixes, scoring and the CSV rows.
-#include "atr/sweep.h"
+#include "study/sweep.h"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <sstream>
 #include <stdexcept>
 
-namespace sonarloop::atr {
+namespace sonarloop::study {
+using namespace sonarloop::atr;  // the classifier the study trains and scores
 namespace {
 
 using targets::TargetType;
@@ -87,7 +88,7 @@ TEST_CASE("experiments: the paper's figures and the stability studies", "[sweep]
   }
   CHECK(f13.mine_groups);
   const SweepExperiment f15 = make_sweep_experiment("fig15", s);
-  CHECK(f15.kind == render::ChipKind::kShadow);
+  CHECK(f15.kind == chips::ChipKind::kShadow);
   CHECK(f15.conditions.front().x == 5.0);
 
   SweepSettings two = s;
@@ -288,8 +289,8 @@ TEST_CASE("fusion: the same objects in both datasets; one series per input and n
   const auto groups = render_groups(e);
   REQUIRE(groups.size() == 1);
   const auto [h, sh] = fusion_specs(e, groups[0], s, true);
-  CHECK(h.kind == render::ChipKind::kHighlight);
-  CHECK(sh.kind == render::ChipKind::kShadow);
+  CHECK(h.kind == chips::ChipKind::kHighlight);
+  CHECK(sh.kind == chips::ChipKind::kShadow);
   CHECK(h.seed == s.seed + kTestSeedOffset);
   // chip i is the same object in both: every drawn parameter agrees
   for (std::uint64_t i = 0; i < 20; ++i) {
@@ -341,4 +342,4 @@ TEST_CASE("burial: one render group per burial; training chips always proud", "[
 }
 
 }  // namespace
-}  // namespace sonarloop::atr
+}  // namespace sonarloop::study

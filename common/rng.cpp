@@ -1,4 +1,4 @@
-#include "sim/core/rng.h"
+#include "common/rng.h"
 
 #include <cmath>
 #include <numbers>

@@ -1,6 +1,6 @@
-// Local tangent plane <-> WGS84: the series of sim/core/geodesy.h against the exact ellipsoidal
+// Local tangent plane <-> WGS84: the series of common/geodesy.h against the exact ellipsoidal
 // route geodetic -> ECEF -> ENU, written here independently (test oracle only).
-#include "sim/core/geodesy.h"
+#include "common/geodesy.h"
 
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-#include "atr/chip_folder.h"
+#include "study/chip_folder.h"
 
 #include <algorithm>
 #include <cctype>
@@ -14,7 +14,10 @@
 #include "atr/chip_resample.h"
 #include "drivers/image/jpeg.h"
 
-namespace sonarloop::atr {
+namespace sonarloop::study {
+
+// the classifier this study code trains and scores (atr/)
+using namespace sonarloop::atr;
 namespace {
 
 namespace fs = std::filesystem;
@@ -344,4 +347,4 @@ ChipFolder read_chip_folder(const std::string& root, const ChipFolderOptions& op
   return folder;
 }
 
-}  // namespace sonarloop::atr
+}  // namespace sonarloop::study

@@ -40,7 +40,7 @@
 #include "atr/chip.h"
 #include "drivers/image/png.h"
 
-namespace sonarloop::atr {
+namespace sonarloop::study {
 
 // A chip size in pixels.
 struct ChipSize {
@@ -64,28 +64,28 @@ struct ChipFolder {
   std::vector<std::string> classes;  // class subfolder names, sorted (empty when unlabelled)
   // Sorted by class then file name; source = path relative to root ("manta/001.png"); label = the
   // class (empty when unlabelled); aspect_deg from labels.csv when given.
-  std::vector<LabelledChip> chips;
+  std::vector<atr::LabelledChip> chips;
   bool has_labels_csv = false;
   std::size_t aspect_count = 0;  // chips with a known aspect angle
   // Files left out with ChipFolderOptions::skip_bad (source relative to root, and why).
-  std::vector<SkippedChip> skipped;
+  std::vector<atr::SkippedChip> skipped;
 };
 
 ChipFolder read_chip_folder(const std::string& root, const ChipFolderOptions& options = {});
 
 // The pixels of folder.chips[index], read from its file (and resampled to size when given).
 // Throws std::runtime_error naming the chip when the file cannot be read.
-Chip read_folder_chip(const ChipFolder& folder, std::size_t index,
-                      const std::optional<ChipSize>& size = std::nullopt);
+atr::Chip read_folder_chip(const ChipFolder& folder, std::size_t index,
+                           const std::optional<ChipSize>& size = std::nullopt);
 
 // One PNG or JPEG file as an unlabelled chip (source = the path), resampled to size when given.
-LabelledChip read_chip_file(const std::string& path,
-                            const std::optional<ChipSize>& size = std::nullopt);
+atr::LabelledChip read_chip_file(const std::string& path,
+                                 const std::optional<ChipSize>& size = std::nullopt);
 
 // Whether a file name has a chip image extension (.png, .jpg, .jpeg; any letter case).
 bool is_chip_image_name(const std::string& file_name);
 
 // 8-bit grey pixels as float chip pixels 0..255.
-Chip chip_from_gray8(const image::Gray8& g);
+atr::Chip chip_from_gray8(const image::Gray8& g);
 
-}  // namespace sonarloop::atr
+}  // namespace sonarloop::study

@@ -1,0 +1,100 @@
+// `sonarloop run`'s console report (run_report.h).
+#include "tools/run_report.h"
+
+#include <cstdio>
+#include <limits>
+
+namespace sonarloop::tools {
+namespace {
+
+double ms(double ns) {
+  return ns * 1e-6;
+}
+
+}  // namespace
+
+void print_run_summary(const emulator::RunStats& s, const char* how) {
+  std::fprintf(stderr, "sonarloop run: %s after %.2f s of simulation in %.2f s (rate %s)\n", how,
+               s.sim_time_s, s.wall_time_s, s.rate.c_str());
+  std::fprintf(stderr,
+               "  pings: %llu sent, %llu deadline misses (%llu late > %.0f ms, %llu dropped)",
+               static_cast<unsigned long long>(s.pings_sent),
+               static_cast<unsigned long long>(s.deadline_misses()),
+               static_cast<unsigned long long>(s.pings_late),
+               ms(static_cast<double>(emulator::kDeadlineToleranceNs)),
+               static_cast<unsigned long long>(s.pings_dropped));
+  if (s.pings_stale || s.stale_episodes) {
+    std::fprintf(stderr, ", %llu not emitted (stale pose, %llu episodes)",
+                 static_cast<unsigned long long>(s.pings_stale),
+                 static_cast<unsigned long long>(s.stale_episodes));
+  }
+  std::fprintf(stderr, "\n");
+  if (s.ping_lateness.count()) {
+    std::fprintf(stderr,
+                 "  lateness (send deadline -> datagram sent): p50 %.3f ms, p99 %.3f ms, max %.3f "
+                 "ms\n",
+                 ms(s.ping_lateness.quantile_ns(0.5)), ms(s.ping_lateness.quantile_ns(0.99)),
+                 ms(static_cast<double>(s.ping_lateness.max_ns())));
+    std::fprintf(stderr,
+                 "  latency (ping time -> datagram sent, incl. the %.1f ms receive window): p50 "
+                 "%.3f ms, p99 %.3f ms, max %.3f ms\n",
+                 s.send_delay_s * 1e3, ms(s.ping_latency.quantile_ns(0.5)),
+                 ms(s.ping_latency.quantile_ns(0.99)),
+                 ms(static_cast<double>(s.ping_latency.max_ns())));
+  }
+  if (s.wall_time_s > 0) {
+    std::fprintf(stderr, "  throughput: %.1f pings/s (%.2fx real time)\n",
+                 static_cast<double>(s.pings_sent) / s.wall_time_s, s.sim_time_s / s.wall_time_s);
+  }
+  std::fprintf(stderr, "  nav: %llu frames in %llu samples, %llu skipped, %llu withheld",
+               static_cast<unsigned long long>(s.nav_frames),
+               static_cast<unsigned long long>(s.nav_samples),
+               static_cast<unsigned long long>(s.nav_frames_skipped),
+               static_cast<unsigned long long>(s.nav_frames_withheld));
+  if (s.nav_lateness.count()) {
+    std::fprintf(stderr, "; lateness p50 %.3f ms, p99 %.3f ms, max %.3f ms",
+                 ms(s.nav_lateness.quantile_ns(0.5)), ms(s.nav_lateness.quantile_ns(0.99)),
+                 ms(static_cast<double>(s.nav_lateness.max_ns())));
+  }
+  std::fprintf(stderr, "\n");
+  if (s.udp_datagrams) {
+    std::fprintf(stderr,
+                 "  udp: %llu datagrams (%llu file headers), %llu refused or dropped by the "
+                 "kernel (e.g. nothing listening on the port)\n",
+                 static_cast<unsigned long long>(s.udp_datagrams),
+                 static_cast<unsigned long long>(s.udp_header_datagrams),
+                 static_cast<unsigned long long>(s.udp_dropped));
+  }
+  std::fprintf(stderr,
+               "  render: %llu pings, %.2f ms mean, %.2f ms max on %d threads; %llu heightmap "
+               "tiles made\n",
+               static_cast<unsigned long long>(s.pings_rendered), s.render_mean_ms, s.render_max_ms,
+               s.threads, static_cast<unsigned long long>(s.tiles_made));
+  std::fprintf(stderr, "  cpu: %.1f %% of one core (%.2f s); start-up %.2f s\n", s.cpu_percent(),
+               s.cpu_time_s, s.startup_s);
+}
+
+void print_run_setup(const emulator::Emulator& emu, const emulator::EmulatorOptions& o) {
+  const auto& s = emu.sonar();
+  std::fprintf(stderr,
+               "sonar '%s': %d samples per side x %.3g m (%.4g m range), ping every %.2f ms "
+               "(%.2f pings/s), %zu-byte XTF pings sent %.1f ms after the ping time\n",
+               s.desc.name.c_str(), s.bins, s.desc.bin_size_m, s.desc.max_range_m,
+               static_cast<double>(emu.ping_period_ns()) * 1e-6,
+               1e9 / static_cast<double>(emu.ping_period_ns()), emu.packet_bytes(),
+               static_cast<double>(emu.send_delay_ns()) * 1e-6);
+  if (emu.end_time() == std::numeric_limits<SimTime>::max()) {
+    std::fprintf(stderr, "duration: until stopped (Ctrl-C)\n");
+  } else {
+    std::fprintf(stderr, "duration: %.2f s of simulation at rate %s\n",
+                 static_cast<double>(emu.end_time()) * 1e-9, emulator::to_string(o.rate).c_str());
+  }
+  for (const auto& line : emu.describe_outputs())
+    std::fprintf(stderr, "%s\n", line.c_str());
+  if (!o.udp) {
+    std::fprintf(stderr,
+                 "hint: no --udp given, pings are not streamed (e.g. --udp 127.0.0.1:5600)\n");
+  }
+}
+
+}  // namespace sonarloop::tools

@@ -82,7 +82,8 @@ struct EmulatorOptions {
 };
 
 struct EmulatorHooks {
-  // Start-up information and warnings, one line each (default: stderr).
+  // Start-up information and warnings, one line each (default: stderr). With --pose-from it is
+  // also called from the pose source's thread (its warnings: rejected poses, a lost connection).
   std::function<void(std::string_view)> message;
   // Periodic statistics (default: none).
   std::function<void(const RunStats&)> on_stats;

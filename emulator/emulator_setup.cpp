@@ -201,8 +201,13 @@ void Emulator::Impl::open_transports() {
   if (options.record_dir) recording = std::make_unique<Recording>(*options.record_dir, header);
   if (options.pose_from) {
     Clock* c = &clock;
+    PoseSourceOptions pose_options;
+    pose_options.limits = pose_limits_for_scene(scenario.scene);
+    // rejected poses and lost connections, said with the run's other warnings
+    pose_options.on_warning = [this](const std::string& w) { message("warning: " + w); };
     try {
-      pose_source = open_pose_source(*options.pose_from, ltp, [c] { return c->now_ns(); });
+      pose_source = open_pose_source(
+          *options.pose_from, ltp, [c] { return c->now_ns(); }, pose_options);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(std::string("--pose-from: ") + e.what());
     } catch (const std::exception& e) {

@@ -46,6 +46,20 @@
 // the spec. Later receive errors (e.g. the socketcand server goes away) are reported once as a
 // warning and counted; the socketcand source reconnects every reconnect_interval_ms. Malformed
 // messages are counted and dropped.
+//
+// Plausibility (PoseLimits). A pose that decodes but cannot be a vehicle's is rejected, counted
+// in PoseSourceStats::rejected (not `updates`, not `malformed`) and said in a warning line, at
+// most one per kRejectWarningIntervalNs (the lines in between are summed into the next): a
+// depth above the sea surface or below the scene's deepest seabed, a negative altitude or one
+// beyond that depth, |pitch| or |roll| of 90 degrees or more, a position that moved faster than
+// a vehicle can (max_speed_m_s plus a navigation fix's jump_tolerance_m), and a UDP time stamp
+// that went back or jumped ahead of its arrival. A rejected message changes nothing, so it does
+// not refresh received_ns: a source that sends only absurd poses goes stale like a silent one,
+// and pings pause until a plausible pose arrives. The relative checks (jump, time stamp) compare
+// with the last accepted sample; after reanchor_after consecutive such rejections the source is
+// taken to have really moved (or its clock to have been stepped): the next sample is accepted as
+// the new reference and the samples before it are forgotten, so that one bad fix cannot lock a
+// vehicle out for ever.
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
@@ -56,6 +70,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <thread>
 
 #include "common/geodesy.h"
@@ -63,7 +78,9 @@
 #include "drivers/net/host_port.h"
 #include "drivers/net/udp_receiver.h"
 #include "emulator/pose_history.h"
+#include "emulator/pose_message.h"
 #include "sim/frames.h"
+#include "sim/scene/scene_desc.h"
 
 namespace sonarloop::emulator {
 
@@ -72,6 +89,44 @@ struct ExternalPose {
   Pose pose;                     // W frame (sim/frames.h); valid parts per the flags below
   bool has_position = false, has_heading = false, has_attitude = false, has_depth = false;
   double altitude_m = std::numeric_limits<double>::quiet_NaN();  // above the seabed; NaN unknown
+};
+
+// What a plausible external pose is (see "Plausibility" above). The defaults reuse the
+// vehicle's hard limits (sim/vehicle/vehicle_desc.h validate(): speed, pitch and roll); the
+// emulator sets the depths from the scene (pose_limits_for_scene below).
+struct PoseLimits {
+  double max_speed_m_s = default_max_speed_m_s();  // the vehicle speed limit, 20 m/s
+  // Added to max_speed_m_s x dt: a USBL- or GPS-aided navigation fix resets the position by up
+  // to a few metres (vehicle_desc.h: USBL-aided position noise 1-5 m).
+  double jump_tolerance_m = 5.0;
+  // A surfaced vehicle's pressure depth swings by the wave height: this much above the surface
+  // is still taken as the surface.
+  double above_surface_tolerance_m = 1.0;
+  double max_depth_m = std::numeric_limits<double>::infinity();     // the deepest seabed
+  double max_altitude_m = std::numeric_limits<double>::infinity();  // the same (water column)
+  double max_pitch_rad = default_max_angle_rad("trajectory.attitude.max_pitch");  // π/2, open
+  double max_roll_rad = default_max_angle_rad("trajectory.attitude.max_roll");    // π/2, open
+  // A stamp may run ahead of the arrival clock by at most this (a message delayed in the
+  // network and the next one on time); beyond it the sender's clock jumped.
+  std::int64_t stamp_tolerance_ns = 1'000'000'000;
+  int reanchor_after = 5;  // consecutive jump / time rejections before re-anchoring
+
+  static double default_max_speed_m_s();
+  static double default_max_angle_rad(std::string_view vehicle_field);
+};
+
+// At most one warning line about rejected poses per this long (now_ns() clock): a sender that
+// streams absurd poses at 50 Hz must not flood the log.
+inline constexpr std::int64_t kRejectWarningIntervalNs = 1'000'000'000;
+
+struct PoseSourceOptions {
+  int receive_timeout_ms = 100;      // receive poll slice: bounds how long stopping takes
+  int reconnect_interval_ms = 1000;  // between reconnection attempts
+  // Called from the receiving thread for each receive error and (rate-limited) for rejected
+  // poses (not for malformed input, which is only counted). Default: a "warning: ..." line on
+  // stderr.
+  std::function<void(const std::string&)> on_warning;
+  PoseLimits limits;
 };
 
 class PoseSource {
@@ -89,13 +144,23 @@ class PoseSource {
   virtual std::string describe() const = 0;
 };
 
+// The limits of a plausible pose over `scene`: its deepest seabed (the mean water depth, the
+// plane's fall to the extent's farthest corner and 6 sigma of the large-scale relief) bounds the
+// depth and the altitude; speed and attitude keep the vehicle limits.
+PoseLimits pose_limits_for_scene(const scene::SceneDesc& scene);
+
+// `options`: the plausibility limits (the emulator's come from the scene, pose_limits_for_scene)
+// and where warnings go; the poll timings keep their defaults.
 std::unique_ptr<PoseSource> open_pose_source(const std::string& spec, const LocalTangentPlane& ltp,
-                                             std::function<std::int64_t()> now_ns);
+                                             std::function<std::int64_t()> now_ns,
+                                             PoseSourceOptions options = {});
 
 // ---- the concrete sources (for tests and for callers that want their counters) ----
 
 struct PoseSourceStats {
   std::uint64_t updates = 0;         // frames/messages that updated the pose
+  std::uint64_t rejected = 0;        // decoded but implausible poses (PoseLimits), dropped
+  std::uint64_t reanchors = 0;       // new reference accepted after reanchor_after rejections
   std::uint64_t ignored = 0;         // valid frames of PGNs that carry no pose (e.g. 129026)
   std::uint64_t malformed = 0;       // undecodable messages/frames, unavailable or invalid fields
   std::uint64_t lost = 0;            // UDP: messages missing according to the sequence numbers
@@ -105,18 +170,13 @@ struct PoseSourceStats {
   std::string last_error;            // text of the last malformed input or receive error
 };
 
-struct PoseSourceOptions {
-  int receive_timeout_ms = 100;      // receive poll slice: bounds how long stopping takes
-  int reconnect_interval_ms = 1000;  // between reconnection attempts
-  // Called from the receiving thread for each receive error (not for malformed input, which is
-  // only counted). Default: a "warning: ..." line on stderr.
-  std::function<void(const std::string&)> on_warning;
-};
-
 // The merging state shared by the sources (thread-safe).
 class PoseMerger {
  public:
-  PoseMerger(const LocalTangentPlane& ltp, std::function<std::int64_t()> now_ns);
+  // `warn` (may be empty: silent) receives the rate-limited lines about rejected poses; it is
+  // called without the merger's lock held.
+  PoseMerger(const LocalTangentPlane& ltp, std::function<std::int64_t()> now_ns,
+             PoseLimits limits = {}, std::function<void(const std::string&)> warn = {});
   // NMEA 2000 frame: updates the pose if it is one of the PGNs above (true), counts otherwise.
   bool merge_n2k(const can::CanFrame& frame);
   // UDP datagram: decodes a pose message and replaces the pose (true), counts otherwise.
@@ -133,9 +193,30 @@ class PoseMerger {
  private:
   void count_malformed_locked(std::string what);   // mu_ held
   void record_snapshot_locked(std::int64_t t_ns);  // all of pose_'s parts at t_ns (mu_ held)
+  // Plausibility (mu_ held): the reason a value is absurd, or empty.
+  std::string check_depth_locked(double depth_m) const;
+  std::string check_altitude_locked(double altitude_m) const;
+  std::string check_attitude_locked(double pitch_rad, double roll_rad) const;
+  // The relative checks (mu_ held): a position jump from the last accepted position sample, and
+  // a UDP stamp against the last accepted one. Empty when plausible or re-anchored.
+  std::string check_jump_locked(std::int64_t t_ns, const Vec2& ne);
+  std::string check_stamp_locked(std::int64_t stamp_ns, std::int64_t arrival_ns);
+  // After a relative rejection: true when reanchor_after of them came in a row (then the
+  // caller accepts the sample as the new reference).
+  bool reanchor_due_locked(int& consecutive);
+  // The absolute and relative checks of a decoded UDP snapshot (mu_ held).
+  std::string check_snapshot_locked(const ExternalPose& p, const PoseMessage& m,
+                                    std::int64_t arrival_ns);
+  // Gives a re-anchoring note, if one is pending, after unlocking.
+  void give_pending_note(std::unique_lock<std::mutex>& lock);
+  // Counts a rejection, unlocks, and gives the warning line if its turn has come; false.
+  bool reject_and_warn(std::unique_lock<std::mutex>& lock, const std::string& what,
+                       std::int64_t now_ns);
 
   LocalTangentPlane ltp_;
   std::function<std::int64_t()> now_ns_;
+  PoseLimits limits_;
+  std::function<void(const std::string&)> warn_;
   mutable std::mutex mu_;
   ExternalPose pose_;
   // each part's recent samples (pose_at)
@@ -148,6 +229,15 @@ class PoseMerger {
   bool any_ = false;
   bool have_sequence_ = false;
   std::uint32_t last_sequence_ = 0;
+  bool have_stamp_ = false;  // last accepted UDP stamp and its arrival
+  std::int64_t last_stamp_ns_ = 0, last_stamp_arrival_ns_ = 0;
+  int position_rejections_ = 0;  // consecutive position jumps rejected
+  int stamp_rejections_ = 0;     // consecutive time stamp jumps rejected
+  std::string pending_note_;     // a re-anchoring, said once the lock is released
+  // rate limit of the rejection warnings
+  bool warned_ = false;
+  std::int64_t last_warning_ns_ = 0;
+  std::uint64_t unwarned_ = 0;  // rejections since the last warning line
   PoseSourceStats stats_;
 };
 

@@ -6,6 +6,11 @@
 //   vehicle: the mission trajectory and the navigation errors (vehicle_loader.h); absent =
 //            VehicleDesc{}. Checked against the scene: in altitude mode the planned path must
 //            stay over the seabed extent (check_vehicle_over_seabed).
+//   memory_limit_gb: the memory the scenario may need by the estimate of
+//            sim/scene/memory_estimate.h (default 4, 0.1 .. 10000); a larger scenario is refused
+//            before anything large is allocated: a target list too long for it before its
+//            entries are read, otherwise once every section is read, naming the key of the
+//            largest part (targets, seabed.grid_spacing_m or sonar), the estimate and the limit.
 // Every key is documented in config/reference.yaml. Unknown top-level keys are reported together
 // (one ConfigError listing each, with suggestions), after the sections have been read.
 //
@@ -25,7 +30,7 @@ using Scenario = sonarloop::Scenario;
 
 // The top-level keys of a scenario besides the scene keys, comma-separated in reference order
 // (for the "allowed" text of a document that is not a map).
-inline constexpr std::string_view kScenarioSections = "sonar, vehicle";
+inline constexpr std::string_view kScenarioSections = "sonar, vehicle, memory_limit_gb";
 
 // Parses the scenario map `f` (the root of a document).
 Scenario parse_scenario_node(const Field& f);

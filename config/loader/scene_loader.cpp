@@ -325,6 +325,7 @@ std::vector<TargetDesc> parse_targets(const Field& f, const SeabedDesc& s) {
   f.expect_list("a list of targets, each a map with type, name, position_m, ...");
   std::vector<TargetDesc> out;
   std::map<targets::TargetType, int> count_of_type;
+  std::map<std::string, std::size_t> index_of_name;
   for (std::size_t i = 0; i < f.size(); ++i) {
     const Field item = f.item(i);
     TargetDesc t = parse_target(item, s);
@@ -333,10 +334,12 @@ std::vector<TargetDesc> parse_targets(const Field& f, const SeabedDesc& s) {
     if (!named) {
       t.name = std::string(targets::target_type_info(t.type).key) + "-" + std::to_string(n);
     }
-    for (std::size_t j = 0; j < out.size(); ++j) {
-      if (out[j].name != t.name) continue;
+    // by name, not by comparing with every earlier target: a list of 1e5 took 20 s
+    const auto [first, inserted] = index_of_name.emplace(t.name, out.size());
+    if (!inserted) {
       item.child("name").fail((named ? "'" + t.name + "'" : "the default name '" + t.name + "'") +
-                                  " is already used by " + f.path() + "[" + std::to_string(j) + "]",
+                                  " is already used by " + f.path() + "[" +
+                                  std::to_string(first->second) + "]",
                               "a name no other target has");
     }
     out.push_back(std::move(t));

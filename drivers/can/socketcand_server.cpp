@@ -112,7 +112,10 @@ SocketcandServer::SocketcandServer(const net::HostPort& listen_address,
     throw std::runtime_error("socketcand server: cannot listen on " + where + ": " +
                              net::errno_text(err) + hint);
   }
-  if (::listen(listen_fd_.get(), 16) != 0 || !set_nonblocking(listen_fd_.get()))
+  // the longest accept queue the kernel allows: with a short one (it was 16), 50 clients
+  // connecting at once overflowed it, and the kernel's SYN-ACK retries (1, 2, 4 s...) left some of
+  // them waiting for "< hi >" past their timeout (issue 11 section 4; the 50-client test)
+  if (::listen(listen_fd_.get(), SOMAXCONN) != 0 || !set_nonblocking(listen_fd_.get()))
     throw std::runtime_error("socketcand server: cannot listen on " + where + ": " +
                              net::errno_text(errno));
   bound_.port = net::to_host_port(net::local_address(listen_fd_.get())).port;

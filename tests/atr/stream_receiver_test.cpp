@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <deque>
+#include <functional>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -28,12 +30,13 @@ constexpr std::uint32_t kFirstNumber = 1000;
 constexpr int kWindow = 32;     // the receiver's reorder window in these tests
 constexpr int kLateDelay = 60;  // sends a late ping is held back: beyond the window
 
-Bytes ping_bytes(const xtf::XtfFileHeader& h, std::uint32_t number) {
+// A ping of `bins` samples per side whose bin (number mod bins) is marked.
+Bytes ping_bytes(const xtf::XtfFileHeader& h, std::uint32_t number, int bins = kBins) {
   testing::PingPose pose;
   pose.number = number;
   pose.north_m = 0.135 * number;
-  std::vector<float> line(kBins, -20.0f);
-  line[static_cast<std::size_t>(number % kBins)] = -3.0f;  // tells pings apart
+  std::vector<float> line(static_cast<std::size_t>(bins), -20.0f);
+  line[number % static_cast<std::uint32_t>(bins)] = -3.0f;  // tells pings apart
   return xtf::encode_ping(testing::make_ping(h, pose, line, line, kBin_m), h);
 }
 
@@ -62,7 +65,27 @@ Bytes corrupt(Bytes b, Rng& rng) {
 struct Expected {
   std::uint64_t pings = 0, lost = 0, late = 0, duplicates = 0, reordered = 0, malformed = 0,
                 file_headers = 0;
+  std::uint64_t dropped = 0, corrupted = 0;  // the injector's split of lost (and of malformed)
+  std::uint64_t datagrams = 0;               // everything emitted
 };
+
+// Per-ping probability of each injected event; a ping meets at most one, and a swap takes the
+// ping after it along.
+struct Rates {
+  double drop = 0.0;
+  double duplicate = 0.0;
+  double swap = 0.0;
+  double corrupt = 0.0;
+  double late = 0.0;
+};
+// A mix of every event, rare enough to leave most of the stream clean.
+constexpr Rates kMixedRates{0.05, 0.04, 0.04, 0.03, 0.015};
+// issue 11 section 4: loss, duplication, reordering, late arrival and corruption at 10 % of the
+// pings each. A swap takes two pings, so only 9 in 10 pings draw an event: 1/9 per draw is 10 %
+// of all pings.
+constexpr double kTenthOfPings = 1.0 / 9.0;
+constexpr Rates kTenPercentEach{kTenthOfPings, kTenthOfPings, kTenthOfPings, kTenthOfPings,
+                                kTenthOfPings};
 
 struct Injected {
   std::vector<Bytes> datagrams;
@@ -72,49 +95,66 @@ struct Injected {
 
 enum class Fate { kNormal, kDrop, kDuplicate, kSwap, kSwapPartner, kCorrupt, kLate };
 
-// n pings numbered from kFirstNumber; every ping meets at most one event; the first and last
-// few and the last 2 x kLateDelay pings are left alone so that every event completes.
-Injected make_injected(int n, std::uint64_t seed) {
-  const xtf::XtfFileHeader h = testing::make_stream_header();
-  const Bytes header = xtf::encode_file_header(h);
-  Rng rng(seed, RngStream::kTraining, 77);
+// The event each of n pings meets; the first and last few and the last 2 x kLateDelay pings are
+// left alone so that every event completes.
+std::vector<Fate> draw_fates(int n, const Rates& r, Rng& rng) {
   std::vector<Fate> fate(static_cast<std::size_t>(n), Fate::kNormal);
+  const double drop = r.drop;
+  const double dup = drop + r.duplicate;
+  const double swap = dup + r.swap;
+  const double corrupt = swap + r.corrupt;
+  const double late = corrupt + r.late;
   for (int i = 5; i < n - 2 * kLateDelay; ++i) {
     if (fate[static_cast<std::size_t>(i)] != Fate::kNormal) continue;
     const double u = rng.uniform();
-    if (u < 0.05) {
+    if (u < drop) {
       fate[static_cast<std::size_t>(i)] = Fate::kDrop;
-    } else if (u < 0.09) {
+    } else if (u < dup) {
       fate[static_cast<std::size_t>(i)] = Fate::kDuplicate;
-    } else if (u < 0.13 && fate[static_cast<std::size_t>(i + 1)] == Fate::kNormal) {
+    } else if (u < swap && fate[static_cast<std::size_t>(i + 1)] == Fate::kNormal) {
       fate[static_cast<std::size_t>(i)] = Fate::kSwap;
       fate[static_cast<std::size_t>(i + 1)] = Fate::kSwapPartner;
-    } else if (u < 0.16) {
+    } else if (u < corrupt) {
       fate[static_cast<std::size_t>(i)] = Fate::kCorrupt;
-    } else if (u < 0.175) {
+    } else if (u < late) {
       fate[static_cast<std::size_t>(i)] = Fate::kLate;
     }
   }
+  return fate;
+}
 
-  Injected out;
-  Expected& e = out.expect;
+// Streams n pings numbered from kFirstNumber, `bins` samples per side, through the events of
+// `rates` into emit(datagram), with a file header every 100 sends and a junk datagram every 37.
+// Returns the counts a correct receiver reports; `delivered` gets the numbers that must come out.
+Expected inject(int n, std::uint64_t seed, const Rates& rates, int bins,
+                const std::function<void(Bytes)>& emit, std::vector<std::uint32_t>& delivered) {
+  const xtf::XtfFileHeader h = testing::make_stream_header();
+  const Bytes header = xtf::encode_file_header(h);
+  Rng rng(seed, RngStream::kTraining, 77);
+  const std::vector<Fate> fate = draw_fates(n, rates, rng);
+
+  Expected e;
   std::deque<std::pair<int, Bytes>> held;  // (sends to wait, datagram): duplicates and late pings
   int sends = 0;
+  const auto emit_counted = [&](Bytes b) {
+    ++e.datagrams;
+    emit(std::move(b));
+  };
   auto send = [&](Bytes b) {
     if (sends % 100 == 0) {
-      out.datagrams.push_back(header);
+      emit_counted(header);
       ++e.file_headers;
     }
     if (sends % 37 == 17) {
-      out.datagrams.push_back(Bytes{0xCE, 0xFA, 0x00});  // junk: too short
+      emit_counted(Bytes{0xCE, 0xFA, 0x00});  // junk: too short
       ++e.malformed;
     }
-    out.datagrams.push_back(std::move(b));
+    emit_counted(std::move(b));
     ++sends;
     for (auto& [wait, bytes] : held)
       --wait;
     while (!held.empty() && held.front().first <= 0) {
-      out.datagrams.push_back(std::move(held.front().second));
+      emit_counted(std::move(held.front().second));
       held.pop_front();
     }
   };
@@ -122,32 +162,34 @@ Injected make_injected(int n, std::uint64_t seed) {
     const auto number = kFirstNumber + static_cast<std::uint32_t>(i);
     switch (fate[static_cast<std::size_t>(i)]) {
       case Fate::kNormal:
-        send(ping_bytes(h, number));
-        out.delivered.push_back(number);
+        send(ping_bytes(h, number, bins));
+        delivered.push_back(number);
         break;
       case Fate::kDrop:
         ++e.lost;
+        ++e.dropped;
         break;
       case Fate::kCorrupt:
-        send(corrupt(ping_bytes(h, number), rng));
+        send(corrupt(ping_bytes(h, number, bins), rng));
         ++e.lost;
         ++e.malformed;
+        ++e.corrupted;
         break;
       case Fate::kDuplicate:
-        send(ping_bytes(h, number));
-        held.emplace_back(static_cast<int>(rng.below(6)), ping_bytes(h, number));
-        out.delivered.push_back(number);
+        send(ping_bytes(h, number, bins));
+        held.emplace_back(static_cast<int>(rng.below(6)), ping_bytes(h, number, bins));
+        delivered.push_back(number);
         ++e.duplicates;
         break;
       case Fate::kLate:
-        held.emplace_back(kLateDelay, ping_bytes(h, number));
+        held.emplace_back(kLateDelay, ping_bytes(h, number, bins));
         ++e.late;
         break;
       case Fate::kSwap:
-        send(ping_bytes(h, number + 1));
-        send(ping_bytes(h, number));
-        out.delivered.push_back(number);
-        out.delivered.push_back(number + 1);
+        send(ping_bytes(h, number + 1, bins));
+        send(ping_bytes(h, number, bins));
+        delivered.push_back(number);
+        delivered.push_back(number + 1);
         ++e.reordered;  // `number` arrives after number + 1
         ++i;
         break;
@@ -157,7 +199,16 @@ Injected make_injected(int n, std::uint64_t seed) {
     }
   }
   REQUIRE(held.empty());
-  e.pings = out.delivered.size();
+  e.pings = delivered.size();
+  return e;
+}
+
+// The injected stream of n pings (kMixedRates, kBins samples per side), kept in memory.
+Injected make_injected(int n, std::uint64_t seed) {
+  Injected out;
+  out.expect = inject(
+      n, seed, kMixedRates, kBins, [&out](Bytes b) { out.datagrams.push_back(std::move(b)); },
+      out.delivered);
   return out;
 }
 
@@ -174,13 +225,13 @@ atr::StreamReceiver make_receiver(Collected& got) {
     // the ping is the one sent with this number (its marked bin)
     const auto s = xtf::samples_near_to_far<float>(p.channels[1], h.chan_info[1]);
     const auto peak = std::max_element(s.begin(), s.end()) - s.begin();
-    got.samples_ok = got.samples_ok && peak == static_cast<long>(p.header.ping_number % kBins);
+    got.samples_ok = got.samples_ok && peak == static_cast<long>(p.header.ping_number % s.size());
   });
 }
 
-void check_counts(const atr::ReceiverStats& s, const Injected& in, const Collected& got) {
-  const Expected& e = in.expect;
-  CHECK(s.datagrams == in.datagrams.size());
+// The receiver's counts equal the injector's bookkeeping exactly, and nothing else happened.
+void check_expected_counts(const atr::ReceiverStats& s, const Expected& e) {
+  CHECK(s.datagrams == e.datagrams);
   CHECK(s.pings == e.pings);
   CHECK(s.lost == e.lost);
   CHECK(s.late == e.late);
@@ -190,6 +241,11 @@ void check_counts(const atr::ReceiverStats& s, const Injected& in, const Collect
   CHECK(s.file_headers == e.file_headers);
   CHECK(s.before_header == 0);
   CHECK(s.restarts == 0);
+}
+
+void check_counts(const atr::ReceiverStats& s, const Injected& in, const Collected& got) {
+  check_expected_counts(s, in.expect);
+  CHECK(s.datagrams == in.datagrams.size());
   CHECK(got.numbers == in.delivered);
   CHECK(got.samples_ok);
 }
@@ -213,6 +269,46 @@ TEST_CASE("stream receiver: injected loss, duplicates, swaps, late pings, corrup
   // pings handed over + lost + late = every number of the sequence
   const auto& s = rx.stats();
   CHECK(s.pings + s.lost + s.late == 1500);
+}
+
+TEST_CASE("stream receiver: 10^5 pings at 10 % each of loss, duplicates, swaps, late, corruption") {
+  // issue 11 section 4.s figure. Few samples per ping keep the 10^5 datagrams cheap (they
+  // are made and fed one at a time, never all held in memory).
+  constexpr int kPings = 100'000;
+  constexpr int kSmallBins = 8;
+  Collected got;
+  atr::StreamReceiver rx = make_receiver(got);
+  std::vector<std::uint32_t> delivered;
+  const auto t0 = std::chrono::steady_clock::now();
+  const Expected e = inject(
+      kPings, 4, kTenPercentEach, kSmallBins, [&rx](Bytes b) { rx.feed(b); }, delivered);
+  rx.flush();
+  const double run_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // each event met about 10 % of the pings (+-1 %: far beyond the binomial spread of 0.1 %)
+  const auto about_a_tenth = [](std::uint64_t count) {
+    return count >= kPings * 9 / 100 && count <= kPings * 11 / 100;
+  };
+  CHECK(about_a_tenth(e.dropped));
+  CHECK(about_a_tenth(e.duplicates));
+  CHECK(about_a_tenth(e.reordered));  // a swap: the lower number arrives second
+  CHECK(about_a_tenth(e.late));
+  CHECK(about_a_tenth(e.corrupted));
+  // the receiver's counts equal the injector's bookkeeping exactly
+  const auto& s = rx.stats();
+  check_expected_counts(s, e);
+  CHECK(s.unconfirmed == 0);
+  CHECK(s.pings + s.lost + s.late == static_cast<std::uint64_t>(kPings));
+  CHECK(got.numbers == delivered);
+  CHECK(got.samples_ok);
+  std::printf(
+      "stream receiver, %d pings at 10 %% each: %llu datagrams, %llu pings, %llu lost (%llu "
+      "dropped + %llu corrupt), %llu duplicates, %llu reordered, %llu late, %llu malformed, "
+      "%.2f s\n",
+      kPings, static_cast<unsigned long long>(s.datagrams),
+      static_cast<unsigned long long>(s.pings), static_cast<unsigned long long>(s.lost),
+      static_cast<unsigned long long>(e.dropped), static_cast<unsigned long long>(e.corrupted),
+      static_cast<unsigned long long>(s.duplicates), static_cast<unsigned long long>(s.reordered),
+      static_cast<unsigned long long>(s.late), static_cast<unsigned long long>(s.malformed), run_s);
 }
 
 TEST_CASE("stream receiver: the same over a real UDP socket on 127.0.0.1") {

@@ -16,6 +16,8 @@
 #include "config/default_scenario.h"
 #include "config/loader/scene_loader.h"
 #include "config/loader/sonar_loader.h"
+#include "sim/render/ping_renderer.h"
+#include "sim/scene/memory_estimate.h"
 #include "tests/support/temp_dir.h"
 
 using namespace sonarloop::config;
@@ -310,4 +312,76 @@ TEST_CASE("scenario_loader: load_scenario reads a file") {
               dir.file("bad.yaml") + ": sonar.bin_size_cm: 0 is out of range (line 3, column 16)",
               0) == 0);
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// memory_limit_gb: huge scenarios refused before anything large is made
+
+namespace {
+
+// `count` Mantas in a row inside the default extent
+std::string mantas(int count) {
+  std::string yaml = "targets:\n";
+  for (int i = 0; i < count; ++i)
+    yaml += "  - {type: manta, position_m: [" + std::to_string(-49 + i % 98) + ", " +
+            std::to_string(-49 + (i / 98) % 98) + "]}\n";
+  return yaml;
+}
+
+}  // namespace
+
+TEST_CASE("scenario_loader: the default scenario needs far less memory than the limit") {
+  const auto s = load_scenario(SONARLOOP_SOURCE_DIR "/config/default.yaml");
+  const render::SonarSetup setup = render::make_sonar_setup(s.sonar, s.scene.water);
+  const render::Fidelity fidelity = render::default_fidelity(setup);
+  const scene::MemoryEstimate e = scene::estimate_memory(
+      s.scene, {setup.bins, fidelity.rays_per_bin, fidelity.along_track_rays, 2});
+  INFO("targets " << e.targets_bytes << " B, tiles " << e.tiles_bytes << " B, pings "
+                  << e.pings_bytes << " B");
+  // four targets (~0.1 MB), 16 x 16 tiles of 256² points at 2.5 cm (84 MB), ray buffers
+  CHECK(e.targets_bytes < 1e6);
+  CHECK(e.tiles_bytes == Approx(256.0 * 65536 * 5));
+  CHECK(e.total_bytes() < 0.05 * 4e9);  // under 5 % of the default 4 GB
+}
+
+TEST_CASE("scenario_loader: 1e5 targets are refused naming the key, the estimate and the limit") {
+  // a long list of the cheapest targets is refused from its length alone, before its entries
+  // are read (the entries here are not even valid targets)
+  std::string boxes = "memory_limit_gb: 0.5\ntargets:\n";
+  for (int i = 0; i < 100'000; ++i)
+    boxes += "  - {}\n";
+  sonarloop::testing::expect_config_error(
+      parse_scenario, "huge.yaml", boxes, "targets",
+      {"100000 targets need an estimated", "more than memory_limit_gb 0.5 GB",
+       "memory_limit_gb (a top-level key, now 0.5) raised"});
+  // 1e5 Mantas (~54 KB each): refused once read, with the parts of the estimate
+  const std::string many = mantas(100'000);
+  sonarloop::testing::expect_config_error(
+      parse_scenario, "mantas.yaml", many, "targets",
+      {"the scenario needs an estimated 5.48 GB", "targets 5.39 GB", "heightmap tiles 0.0839 GB",
+       "more than memory_limit_gb 4 GB", "memory_limit_gb (a top-level key, now 4)"});
+  // a limit can be raised: 20,000 Mantas (~1.2 GB) refused at 1 GB, accepted at 2 GB (nothing
+  // is built by loading)
+  const std::string some = mantas(20'000);
+  sonarloop::testing::expect_config_error(parse_scenario, "some.yaml",
+                                          "memory_limit_gb: 1\n" + some, "targets",
+                                          {"more than memory_limit_gb 1 GB"});
+  CHECK(parse_scenario("memory_limit_gb: 2\n" + some, "some.yaml").scene.targets.size() == 20'000);
+}
+
+TEST_CASE("scenario_loader: a huge extent at a fine spacing and a huge ray fan are refused") {
+  // 1e9 m and 1e-6 m are outside the keys' ranges (scene_loader_errors_test); inside them the
+  // tile cache is what grows: 2048 tiles of 256² points, 0.67 GB, allowed by default
+  const std::string wide = "seabed: {extent_m: [100000, 100000], grid_spacing_m: 0.1}\n";
+  CHECK_NOTHROW(parse_scenario(wide, "wide.yaml"));
+  sonarloop::testing::expect_config_error(
+      parse_scenario, "wide.yaml", "memory_limit_gb: 0.5\n" + wide, "seabed.grid_spacing_m",
+      {"heightmap tiles 0.671 GB", "more than memory_limit_gb 0.5 GB", "now 0.5"});
+  // the largest ray fan allowed per key: 64 x 256 rays per bin over both sides and 2 threads
+  const std::string fan =
+      "sonar: {preset: pailhas_strip, rays_per_bin: 64, along_track_rays: 256}\n";
+  sonarloop::testing::expect_config_error(parse_scenario, "fan.yaml", fan, "sonar",
+                                          {"ping buffers", "more than memory_limit_gb 4 GB"});
+  sonarloop::testing::expect_config_error(parse_scenario, "limit.yaml", "memory_limit_gb: 0.01\n",
+                                          "memory_limit_gb", {"0.1 .. 10000"});
 }

@@ -1,11 +1,13 @@
 // The emulator in-process: --rate max determinism, the navigation it publishes against the
 // vehicle's navigation model, the UDP size rule, and following an external pose (HIL) with a
 // stale period.
+#include <algorithm>
 #include <atomic>
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <mutex>
 #include <sstream>
@@ -166,18 +168,29 @@ TEST_CASE("emulator: a ping too large for one UDP datagram is refused, naming th
   CHECK_NOTHROW(Emulator(sc, o, clock));
 }
 
-TEST_CASE("emulator --pose-from: pings follow the external pose and pause while it is stale") {
-  // a free UDP port for the pose source
-  std::uint16_t port = 0;
+namespace {
+
+// One hardware-in-the-loop run: 2.5 s of the small scenario at real time, recorded into
+// DIR/hil, its pose from UDP on 127.0.0.1 (stale after `stale_after_s`), sent by `send` on a
+// thread of its own once the run has started, at `where` (12 m west of the planned line).
+struct HilRun {
+  RunStats stats;
+  std::vector<std::string> messages;  // everything the emulator said
+  GeoPoint where;
+};
+
+HilRun run_hil(const testing::TempDir& dir, double stale_after_s,
+               const std::function<void(net::UdpSender&, const GeoPoint&)>& send) {
+  std::uint16_t port = 0;  // a free UDP port for the pose source
   {
     net::UdpReceiver probe(net::parse_host_port("127.0.0.1:0"));
     port = probe.bound_port();
   }
-  testing::TempDir dir("emu-hil");
   const config::Scenario sc = small_scenario();
   const LocalTangentPlane ltp(
       GeoPoint{sc.scene.origin.latitude_deg, sc.scene.origin.longitude_deg});
-  const GeoPoint where = ltp.to_geodetic(10.0, -12.0);  // 12 m west of the planned line
+  HilRun run;
+  run.where = ltp.to_geodetic(10.0, -12.0);
 
   EmulatorOptions o;
   o.rate = parse_rate("realtime");
@@ -185,34 +198,45 @@ TEST_CASE("emulator --pose-from: pings follow the external pose and pause while 
   o.duration_s = 2.5;
   o.record_dir = dir.file("hil");
   o.pose_from = "udp:127.0.0.1:" + std::to_string(port);
-  o.stale_after_s = 0.4;
+  o.stale_after_s = stale_after_s;
   o.stats_interval_s = 0;
   MonotonicClock clock;
   std::mutex mu;
-  std::vector<std::string> messages;
   std::atomic<bool> started{false};
   EmulatorHooks hooks;
   hooks.message = [&](std::string_view m) {
     std::lock_guard<std::mutex> lock(mu);
-    messages.emplace_back(m);
+    run.messages.emplace_back(m);
     if (m.find("scene for the first ping") != std::string_view::npos)
       started = true;  // t = 0 follows
   };
   Emulator emu(sc, o, clock, hooks);
-
-  // the external vehicle: 1 s of poses at 50 Hz once the run starts, then silence
   std::thread sender([&] {
     net::UdpSender tx(net::parse_host_port("127.0.0.1:" + std::to_string(port)));
     // (bounded, so that a changed start-up message fails the test instead of hanging it)
     for (int w = 0; !started && w < 10000; ++w)
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    send(tx, run.where);
+  });
+  run.stats = emu.run();
+  sender.join();
+  return run;
+}
+
+}  // namespace
+
+TEST_CASE("emulator --pose-from: pings follow the external pose and pause while it is stale") {
+  testing::TempDir dir("emu-hil");
+  // the external vehicle: 1 s of poses at 50 Hz once the run starts, then silence
+  const HilRun run = run_hil(dir, 0.4, [](net::UdpSender& tx, const GeoPoint& where) {
     for (std::uint32_t i = 0; i < 50; ++i) {
       tx.send(encode_pose_message(level_pose(i, where, 12.0, 0.3)));
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
   });
-  const RunStats s = emu.run();
-  sender.join();
+  const RunStats& s = run.stats;
+  const GeoPoint& where = run.where;
+  const std::vector<std::string>& messages = run.messages;
 
   CHECK(s.pings_sent > 0);
   CHECK(s.pings_stale > 0);
@@ -385,4 +409,43 @@ TEST_CASE("emulator --pose-from: pings from a 10 Hz pose source are evenly space
   const auto [ne0, s0] = fly_10hz_pose_source(dir.file("extrap"), 0.0);
   check_even_spacing(ne0, s0);
   CHECK(s0.pings_extrapolated > s0.pings_sent / 2);
+}
+
+TEST_CASE("emulator --pose-from: a source of absurd poses stalls the pings; they resume after") {
+  testing::TempDir dir("emu-hil-absurd");
+  // 50 Hz: 0.5 s plausible, 1 s at a depth of 5 km (below the scene's deepest seabed), plausible
+  // again
+  const HilRun run = run_hil(dir, 0.3, [](net::UdpSender& tx, const GeoPoint& where) {
+    for (std::uint32_t i = 0; i < 110; ++i) {
+      const bool absurd = i >= 25 && i < 75;
+      tx.send(encode_pose_message(level_pose(i, where, absurd ? 5000.0 : 12.0, 0.3)));
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  });
+  const RunStats& s = run.stats;
+  const std::vector<std::string>& messages = run.messages;
+
+  CHECK(s.pings_sent > 0);
+  CHECK(s.pings_stale > 0);
+  CHECK(s.stale_episodes >= 1);
+  const auto said = [&](std::string_view text) {
+    return std::any_of(messages.begin(), messages.end(),
+                       [&](const std::string& m) { return m.find(text) != std::string::npos; });
+  };
+  // the rejection warned about (rate-limited: far fewer lines than the 50 rejected messages),
+  // the pause and the resumption said
+  const auto rejections = std::count_if(messages.begin(), messages.end(), [](const auto& m) {
+    return m.rfind("warning: udp pose on", 0) == 0 &&
+           m.find("implausible pose rejected") != std::string::npos;
+  });
+  CHECK(rejections >= 1);
+  CHECK(rejections <= 3);
+  CHECK(said("depth 5000 m is below the scene's deepest seabed"));
+  CHECK(said("pings paused"));
+  CHECK(said("pings resumed"));
+  // no ping at the absurd depth
+  const auto file = xtf::read_all_pings(dir.file("hil/pings.xtf"));
+  REQUIRE(file.pings.size() == s.pings_sent);
+  for (const auto& p : file.pings)
+    CHECK(p.header.sensor_depth_m == Approx(12.0f));
 }

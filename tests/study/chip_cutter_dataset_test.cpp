@@ -93,6 +93,7 @@ TEST_CASE("chip cutter: a dataset chip streamed back is cut out pixel for pixel,
       off_by_one += d == 1.0f;  // a level on a rounding boundary, after float samples
       worse += d > 1.0f;
     }
+    INFO("pixels exact " << exact << ", off by one " << off_by_one << ", worse " << worse);
     CHECK(worse == 0);
     CHECK(exact >= static_cast<int>(0.995 * static_cast<double>(chip.pixels.size())));
     CHECK(cutter.gap_rows() == 0);

@@ -9,6 +9,16 @@
 
 #include <cstddef>
 
+// Whether a sanitizer owns malloc: GCC says so with __SANITIZE_*__, clang 14 only through
+// __has_feature.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define SONARLOOP_SANITIZER_OWNS_MALLOC 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define SONARLOOP_SANITIZER_OWNS_MALLOC 1
+#endif
+#endif
+
 namespace {
 // initial-exec TLS of the executable itself: reading it never allocates
 thread_local bool g_counting = false;
@@ -32,7 +42,7 @@ long counted_allocations() {
 
 }  // namespace sonarloop::testing
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#ifdef SONARLOOP_SANITIZER_OWNS_MALLOC
 // from the sanitizer runtime (libasan); GCC does not ship <sanitizer/allocator_interface.h>
 extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
                                                                              std::size_t),

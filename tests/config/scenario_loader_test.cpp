@@ -354,19 +354,20 @@ TEST_CASE("scenario_loader: 1e5 targets are refused naming the key, the estimate
       parse_scenario, "huge.yaml", boxes, "targets",
       {"100000 targets need an estimated", "more than memory_limit_gb 0.5 GB",
        "memory_limit_gb (a top-level key, now 0.5) raised"});
-  // 1e5 Mantas (~54 KB each): refused once read, with the parts of the estimate
-  const std::string many = mantas(100'000);
+  // 10,000 Mantas (~54 KB each) at a 0.5 GB limit: refused once read, with the parts of the
+  // estimate (1e5 at the default 4 GB behave alike, at ten times the test's time)
+  const std::string many = "memory_limit_gb: 0.5\n" + mantas(10'000);
   sonarloop::testing::expect_config_error(
       parse_scenario, "mantas.yaml", many, "targets",
-      {"the scenario needs an estimated 5.48 GB", "targets 5.39 GB", "heightmap tiles 0.0839 GB",
-       "more than memory_limit_gb 4 GB", "memory_limit_gb (a top-level key, now 4)"});
-  // a limit can be raised: 20,000 Mantas (~1.2 GB) refused at 1 GB, accepted at 2 GB (nothing
-  // is built by loading)
-  const std::string some = mantas(20'000);
+      {"the scenario needs an estimated", "targets 0.539 GB", "heightmap tiles 0.0839 GB",
+       "more than memory_limit_gb 0.5 GB", "memory_limit_gb (a top-level key, now 0.5)"});
+  // a limit can be raised: 2,000 Mantas (~0.19 GB with the tiles) refused at 0.15 GB, accepted
+  // at 0.3 GB (nothing is built by loading)
+  const std::string some = mantas(2'000);
   sonarloop::testing::expect_config_error(parse_scenario, "some.yaml",
-                                          "memory_limit_gb: 1\n" + some, "targets",
-                                          {"more than memory_limit_gb 1 GB"});
-  CHECK(parse_scenario("memory_limit_gb: 2\n" + some, "some.yaml").scene.targets.size() == 20'000);
+                                          "memory_limit_gb: 0.15\n" + some, "targets",
+                                          {"more than memory_limit_gb 0.15 GB"});
+  CHECK(parse_scenario("memory_limit_gb: 0.3\n" + some, "some.yaml").scene.targets.size() == 2'000);
 }
 
 TEST_CASE("scenario_loader: a huge extent at a fine spacing and a huge ray fan are refused") {

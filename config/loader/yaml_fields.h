@@ -211,6 +211,15 @@ class Field {
                               const std::string& allowed,
                               const std::vector<std::string>& names) const;
   std::string scalar_for_name(std::string_view noun, const std::string& allowed) const;
+  // An integer scalar's text and magnitude (as_int, as_uint64); fails for anything that is not
+  // one, with `allowed` as the message's "allowed" part.
+  struct IntegerText {
+    std::string text;
+    bool negative = false;
+    bool overflow = false;
+    std::uint64_t magnitude = 0;
+  };
+  IntegerText integer_scalar(const std::string& allowed) const;
   void check_default(double def, const Range& range) const;
 
   YAML::Node node_;

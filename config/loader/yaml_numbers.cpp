@@ -232,22 +232,25 @@ std::string int_allowed(std::string_view lo, std::string_view hi, bool unbounded
 }
 }  // namespace
 
+Field::IntegerText Field::integer_scalar(const std::string& allowed) const {
+  if (is_null()) fail("has no value", allowed);
+  if (!node_.IsScalar()) fail(describe_value() + " is not an integer", allowed);
+  IntegerText r;
+  r.text = node_.Scalar();
+  if (node_.Tag() == "!") fail(quote(r.text) + " is a quoted string, not an integer", allowed);
+  if (node_.Tag() != "?" && node_.Tag() != kIntTag) {
+    fail(quote(r.text) + " is tagged " + node_.Tag() + ", not an integer", allowed);
+  }
+  if (!parse_integer(r.text, r.negative, r.magnitude, r.overflow)) {
+    fail(quote(r.text) + " is not an integer", allowed);
+  }
+  return r;
+}
+
 std::uint64_t Field::as_uint64(std::uint64_t lo, std::uint64_t hi) const {
   const std::string allowed = int_allowed(std::to_string(lo), std::to_string(hi),
                                           hi == std::numeric_limits<std::uint64_t>::max());
-  if (is_null()) fail("has no value", allowed);
-  if (!node_.IsScalar()) fail(describe_value() + " is not an integer", allowed);
-  const std::string& text = node_.Scalar();
-  if (node_.Tag() == "!") fail(quote(text) + " is a quoted string, not an integer", allowed);
-  if (node_.Tag() != "?" && node_.Tag() != kIntTag) {
-    fail(quote(text) + " is tagged " + node_.Tag() + ", not an integer", allowed);
-  }
-  bool negative = false;
-  bool overflow = false;
-  std::uint64_t mag = 0;
-  if (!parse_integer(text, negative, mag, overflow)) {
-    fail(quote(text) + " is not an integer", allowed);
-  }
+  const auto [text, negative, overflow, mag] = integer_scalar(allowed);
   if (overflow || (negative && mag != 0) || mag < lo || mag > hi) {
     fail(text + " is out of range", allowed);
   }
@@ -257,19 +260,7 @@ std::uint64_t Field::as_uint64(std::uint64_t lo, std::uint64_t hi) const {
 int Field::as_int(int lo, int hi) const {
   const std::string allowed =
       int_allowed(std::to_string(lo), std::to_string(hi), hi == std::numeric_limits<int>::max());
-  if (is_null()) fail("has no value", allowed);
-  if (!node_.IsScalar()) fail(describe_value() + " is not an integer", allowed);
-  const std::string& text = node_.Scalar();
-  if (node_.Tag() == "!") fail(quote(text) + " is a quoted string, not an integer", allowed);
-  if (node_.Tag() != "?" && node_.Tag() != kIntTag) {
-    fail(quote(text) + " is tagged " + node_.Tag() + ", not an integer", allowed);
-  }
-  bool negative = false;
-  bool overflow = false;
-  std::uint64_t mag = 0;
-  if (!parse_integer(text, negative, mag, overflow)) {
-    fail(quote(text) + " is not an integer", allowed);
-  }
+  const auto [text, negative, overflow, mag] = integer_scalar(allowed);
   // |int| fits comfortably in 2^32; anything larger is out of range whatever lo and hi are
   constexpr std::uint64_t kLimit = std::uint64_t{1} << 32;
   if (overflow || mag >= kLimit) fail(text + " is out of range", allowed);

@@ -10,7 +10,7 @@
 namespace sonarloop::autonomy {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
 
 bool classified(const atr::Contact& c) {
   return !c.class_name.empty() && !c.scores.empty();
@@ -22,7 +22,7 @@ double mean_distance(const atr::Contact& c) {
   for (const auto& s : c.scores)
     sum += s.second;
   const double mean = sum / static_cast<double>(c.scores.size());
-  return mean > 0.0 && std::isfinite(mean) ? mean : kNaN;
+  return mean > 0.0 && std::isfinite(mean) ? mean : kMissing;
 }
 
 void read_scores(const JsonLine& j, atr::Contact& c) {
@@ -52,16 +52,16 @@ std::optional<atr::Contact> contact_from_json(std::string_view line, std::string
   if (const auto t = j->number("time_utc_ns")) c.time_utc_ns = static_cast<std::int64_t>(*t);
   c.ping_number = static_cast<std::uint32_t>(j->number("ping").value_or(0));
   c.side = j->string("side").value_or("starboard") == "port" ? 0 : 1;
-  c.slant_range_m = j->number("slant_range_m").value_or(kNaN);
-  c.ground_range_m = j->number("ground_range_m").value_or(kNaN);
+  c.slant_range_m = j->number("slant_range_m").value_or(kMissing);
+  c.ground_range_m = j->number("ground_range_m").value_or(kMissing);
   c.class_name = j->string("class").value_or("");
   c.mine_like = j->boolean("mine_like").value_or(false);
-  c.distance = j->number("distance").value_or(kNaN);
+  c.distance = j->number("distance").value_or(kMissing);
   c.runner_up = j->string("runner_up").value_or("");
-  c.runner_up_distance = j->number("runner_up_distance").value_or(kNaN);
+  c.runner_up_distance = j->number("runner_up_distance").value_or(kMissing);
   read_scores(*j, c);
-  c.mine_distance = j->number("mine_distance").value_or(kNaN);
-  c.non_mine_distance = j->number("non_mine_distance").value_or(kNaN);
+  c.mine_distance = j->number("mine_distance").value_or(kMissing);
+  c.non_mine_distance = j->number("non_mine_distance").value_or(kMissing);
   c.looks = static_cast<int>(j->number("looks").value_or(1));
   c.object = static_cast<std::uint64_t>(j->number("object").value_or(0));
   c.fused_class = j->string("fused_class").value_or("");
@@ -124,7 +124,7 @@ FusedDecision fuse_looks(const std::vector<atr::Contact>& looks) {
   }
   f.class_name = best;
   f.margin = second.empty() ? 0.0 : (sum[second] - sum[best]) / sum[best];
-  f.mine_margin = groups ? group_gap(mine_sum, non_mine_sum) : kNaN;
+  f.mine_margin = groups ? group_gap(mine_sum, non_mine_sum) : kMissing;
   if (groups) {
     f.mine_like = mine_sum < non_mine_sum;
   } else {
@@ -158,7 +158,7 @@ ObjectDecision decide(const std::vector<atr::Contact>& looks, double threshold) 
       d.fused.mine_like = c.mine_like;
       d.fused.mine_margin = std::isfinite(c.mine_distance) && std::isfinite(c.non_mine_distance)
                                 ? group_gap(c.mine_distance, c.non_mine_distance)
-                                : kNaN;
+                                : kMissing;
     }
     d.state = d.fused.margin >= threshold ? FinalState::kConfirmed : FinalState::kUncertain;
     return d;

@@ -69,6 +69,9 @@ function(sonarloop_add_test source)
     add_test(NAME ${name} COMMAND ${select} "[#${file_tag}]"
              WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
     set_tests_properties(${name} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
+    if(name IN_LIST SONARLOOP_LONG_TESTS)
+      set_tests_properties(${name} PROPERTIES COST 100)
+    endif()
   else()
     add_test(NAME ${name} COMMAND ${select} "[#${file_tag}]~[may_skip]"
              WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})

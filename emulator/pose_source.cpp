@@ -15,6 +15,7 @@
 #include "drivers/can/socketcand_client.h"
 #include "drivers/n2k/messages.h"
 #include "emulator/pose_message.h"
+#include "emulator/stderr_warning.h"
 #include "sim/vehicle/vehicle_desc.h"
 
 namespace sonarloop::emulator {
@@ -32,10 +33,6 @@ constexpr std::size_t kUdpBufferBytes = 2048;
 // How far the scene's relief reaches below its plane, in standard deviations of the
 // large-scale elevation (Gaussian relief: 6 sigma is exceeded with probability ~1e-9).
 constexpr double kReliefSigmas = 6.0;
-
-void default_warning(const std::string& text) {
-  std::fprintf(stderr, "warning: %s\n", text.c_str());
-}
 
 // printf-style text for the rejection reasons
 template <typename... Args>
@@ -497,7 +494,7 @@ CanPoseSource::CanPoseSource(std::string name, Connect connect, const LocalTange
       options_(std::move(options)),
       merger_(ltp, std::move(now_ns), options_.limits,
               [this](const std::string& w) { options_.on_warning(name_ + ": " + w); }) {
-  if (!options_.on_warning) options_.on_warning = default_warning;
+  if (!options_.on_warning) options_.on_warning = warn_on_stderr;
   transport_ = connect_();
   if (!transport_ || !transport_->can_receive())
     throw std::invalid_argument(name_ + ": the transport cannot receive frames");
@@ -572,7 +569,7 @@ UdpPoseSource::UdpPoseSource(const net::HostPort& local, const LocalTangentPlane
                                     ": " + w);
               }),
       receiver_(local) {
-  if (!options_.on_warning) options_.on_warning = default_warning;
+  if (!options_.on_warning) options_.on_warning = warn_on_stderr;
   thread_ = std::thread([this] { run(); });
 }
 

@@ -9,6 +9,7 @@
 
 #include "drivers/can/candump_log.h"
 #include "drivers/xtf/xtf_file.h"
+#include "emulator/stderr_warning.h"
 
 namespace sonarloop::emulator {
 namespace {
@@ -16,10 +17,6 @@ namespace {
 // Longest single sleep while waiting for a deadline, so that a stop request (SIGINT, which may be
 // delivered to another thread and not interrupt the sleep) is seen within this time.
 constexpr std::int64_t kStopPollNs = 50'000'000;
-
-void default_warning(const std::string& text) {
-  std::fprintf(stderr, "warning: %s\n", text.c_str());
-}
 
 bool stop_requested(const ReplayOptions& o) {
   return o.stop && o.stop->load(std::memory_order_relaxed);
@@ -244,7 +241,7 @@ XtfTimeline read_xtf_timeline(const std::string& path) {
 ReplaySummary replay_xtf(const std::string& path, const DatagramSink& send, Clock& clock,
                          const ReplayOptions& options_in) {
   ReplayOptions options = options_in;
-  if (!options.on_warning) options.on_warning = default_warning;
+  if (!options.on_warning) options.on_warning = warn_on_stderr;
   const XtfTimeline tl = read_xtf_timeline(path);
   const XtfSchedule& sched = tl.schedule;
   const std::size_t n = tl.packet_bytes.size();
@@ -346,7 +343,7 @@ ReplaySummary replay_candump(const std::string& path,
                              std::span<can::CanTransport* const> transports, Clock& clock,
                              const ReplayOptions& options_in) {
   ReplayOptions options = options_in;
-  if (!options.on_warning) options.on_warning = default_warning;
+  if (!options.on_warning) options.on_warning = warn_on_stderr;
 
   // first pass: every line checked, the time span measured
   std::uint64_t records = 0;

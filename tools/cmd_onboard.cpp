@@ -145,14 +145,14 @@ void listen(const ListenOptions& o, Consumer& consumer, atr::PacketQueue& queue)
     queue.close();
   });
 
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
+  using SteadyClock = std::chrono::steady_clock;
+  const auto start = SteadyClock::now();
   auto last = start;
   bool got_any = false, flushed = true;
   for (;;) {
     const bool got = queue.pop([&](std::span<const std::uint8_t> p) { consumer.feed(p); }, kPollMs);
     consumer.tick();
-    const auto now = Clock::now();
+    const auto now = SteadyClock::now();
     if (got) {
       last = now;
       got_any = true;

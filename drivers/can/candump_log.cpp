@@ -5,16 +5,15 @@
 #include <charconv>
 #include <stdexcept>
 
+#include "drivers/can/can_text.h"
 #include "drivers/io/line_file.h"
 #include "drivers/net/unique_fd.h"
 
 namespace sonarloop::can {
 namespace {
 
-constexpr std::int64_t kNsPerSecond = 1'000'000'000;
 constexpr std::uint32_t kCanErrFlag = 0x20000000u;  // linux/can.h CAN_ERR_FLAG
 constexpr std::size_t kMaxChannelChars = 64;
-constexpr char kHexDigits[] = "0123456789ABCDEF";
 
 int hex_value(char c) {
   if (c >= '0' && c <= '9') return c - '0';

@@ -3,20 +3,19 @@
 #include <charconv>
 #include <cstdio>
 
+#include "drivers/can/can_text.h"
+
 namespace sonarloop::can {
 namespace {
 
-constexpr std::int64_t kNsPerSecond = 1'000'000'000;
-constexpr char kHexDigits[] = "0123456789ABCDEF";
-
-bool is_space(char c) {
+bool is_protocol_space(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\n';
 }
 
 std::string_view trim(std::string_view s) {
-  while (!s.empty() && is_space(s.front()))
+  while (!s.empty() && is_protocol_space(s.front()))
     s.remove_prefix(1);
-  while (!s.empty() && is_space(s.back()))
+  while (!s.empty() && is_protocol_space(s.back()))
     s.remove_suffix(1);
   return s;
 }
@@ -25,7 +24,7 @@ std::string_view trim(std::string_view s) {
 std::string_view next_word(std::string_view& s) {
   s = trim(s);
   std::size_t i = 0;
-  while (i < s.size() && !is_space(s[i]))
+  while (i < s.size() && !is_protocol_space(s[i]))
     ++i;
   const std::string_view word = s.substr(0, i);
   s.remove_prefix(i);
@@ -193,7 +192,7 @@ std::optional<CanFrame> parse_socketcand_send(std::string_view element, std::str
 
 std::optional<std::string> SocketcandStreamParser::next(std::string& error) {
   // skip separators between elements
-  while (pos_ < buffer_.size() && is_space(buffer_[pos_]))
+  while (pos_ < buffer_.size() && is_protocol_space(buffer_[pos_]))
     ++pos_;
   if (pos_ < buffer_.size() && buffer_[pos_] != '<') {
     error = "unexpected character '" + std::string(1, buffer_[pos_]) + "' outside '< ... >'";

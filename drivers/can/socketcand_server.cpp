@@ -40,7 +40,10 @@ bool would_block(int err) {
   return err == EAGAIN || err == EWOULDBLOCK;
 }
 
-// A fixed-capacity FIFO of bytes (allocated once per client).
+}  // namespace
+
+// A fixed-capacity FIFO of bytes (allocated once per client). Outside the anonymous namespace:
+// Client, a member of the public class, holds one (GCC's -Wsubobject-linkage in a unity build).
 class ByteRing {
  public:
   explicit ByteRing(std::size_t capacity) : buf_(capacity) {}
@@ -71,8 +74,6 @@ class ByteRing {
   std::size_t head_ = 0;
   std::size_t size_ = 0;
 };
-
-}  // namespace
 
 struct SocketcandServer::Client {
   enum class State { kAwaitOpen, kAwaitMode, kRawPending, kRaw };

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "sim/core/integer_division.h"
 #include "sim/seabed/fft2d.h"
 
 namespace sonarloop::seabed {
@@ -25,11 +26,6 @@ std::vector<std::complex<float>>& thread_buffer(std::size_t n) {
   thread_local std::vector<std::complex<float>> buf;
   buf.resize(n);
   return buf;
-}
-
-std::int64_t floor_div(std::int64_t a, std::int64_t b) {
-  const std::int64_t q = a / b;
-  return (a % b != 0 && (a < 0) != (b < 0)) ? q - 1 : q;
 }
 
 std::size_t wrap(std::int64_t a, int n) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <thread>
 
+#include "sim/core/integer_division.h"
 #include "sim/seabed/layer_rules.h"
 #include "sim/seabed/spectra.h"
 #include "units/angles.h"
@@ -17,11 +18,6 @@ namespace {
 
 // Model ids: a counter, not randomness (ids never reach an output).
 std::atomic<std::uint64_t> g_next_model_uid{1};
-
-std::int64_t floor_div(std::int64_t a, std::int64_t b) {
-  const std::int64_t q = a / b;
-  return (a % b != 0 && (a < 0) != (b < 0)) ? q - 1 : q;
-}
 
 std::unique_ptr<NoiseLayer> make_elevation(const scene::SceneDesc& desc) {
   const auto& e = desc.seabed.elevation;

@@ -5,9 +5,10 @@
 
 namespace sonarloop::vehicle {
 
+inline constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
 // a wrapped to [-π, π).
 inline double wrap_to_pi(double a) {
-  constexpr double kTwoPi = 2.0 * std::numbers::pi;
   double w = std::fmod(a + std::numbers::pi, kTwoPi);
   if (w < 0.0) w += kTwoPi;
   w -= std::numbers::pi;
@@ -17,7 +18,6 @@ inline double wrap_to_pi(double a) {
 
 // a wrapped to [0, 2π) (a heading as NMEA 2000 publishes it).
 inline double wrap_to_two_pi(double a) {
-  constexpr double kTwoPi = 2.0 * std::numbers::pi;
   double w = std::fmod(a, kTwoPi);
   if (w < 0.0) w += kTwoPi;
   return w >= kTwoPi ? 0.0 : w;

@@ -4,12 +4,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "sim/vehicle/angles.h"
+
 namespace sonarloop::vehicle {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kMinLineM = 1e-9;     // shorter lines are rounding residue, not path
 constexpr double kMinTurnRad = 1e-12;  // smaller turns likewise
 
@@ -133,7 +133,8 @@ void PathBuilder::fly_over(Vec2 waypoint_NE, double radius_m) {
   const double dc = cw.norm();
   const double tangent_m = std::sqrt(std::max(0.0, dc * dc - radius_m * radius_m));
   const double bearing = std::atan2(cw.y(), cw.x());
-  const double final_heading = bearing - side * std::atan2(tangent_m, radius_m) + side * kPi / 2;
+  const double final_heading =
+      bearing - side * std::atan2(tangent_m, radius_m) + side * std::numbers::pi / 2;
 
   // turn by the angle, in the chosen direction, from the present heading to the final one
   double turn = std::fmod(side * (final_heading - heading_), kTwoPi);
@@ -148,14 +149,14 @@ void PathBuilder::fly_over(Vec2 waypoint_NE, double radius_m) {
 void PathBuilder::u_turn(double spacing_m, double radius_m, TurnDirection side) {
   const double sign = side == TurnDirection::kStarboard ? 1.0 : -1.0;
   if (spacing_m >= 2.0 * radius_m) {
-    arc(sign * kPi / 2, radius_m);
+    arc(sign * std::numbers::pi / 2, radius_m);
     line(spacing_m - 2.0 * radius_m);
-    arc(sign * kPi / 2, radius_m);
+    arc(sign * std::numbers::pi / 2, radius_m);
     return;
   }
   const double alpha = keyhole_angle(spacing_m, radius_m);
   arc(-sign * alpha, radius_m);
-  arc(sign * (kPi + 2.0 * alpha), radius_m);
+  arc(sign * (std::numbers::pi + 2.0 * alpha), radius_m);
   arc(-sign * alpha, radius_m);
 }
 
@@ -173,8 +174,8 @@ double keyhole_angle(double spacing_m, double radius_m) {
 }
 
 double u_turn_length_m(double spacing_m, double radius_m) {
-  if (spacing_m >= 2.0 * radius_m) return kPi * radius_m + spacing_m - 2.0 * radius_m;
-  return radius_m * (kPi + 4.0 * keyhole_angle(spacing_m, radius_m));
+  if (spacing_m >= 2.0 * radius_m) return std::numbers::pi * radius_m + spacing_m - 2.0 * radius_m;
+  return radius_m * (std::numbers::pi + 4.0 * keyhole_angle(spacing_m, radius_m));
 }
 
 double u_turn_overshoot_m(double spacing_m, double radius_m) {

@@ -18,7 +18,6 @@ constexpr double kMaxStepS = 3600.0;  // noise and drift steps, the roll time co
 constexpr double kMinStepS = 1e-9;    // at least 1 ns: the steps are used as integer nanoseconds
 constexpr int kMaxLegs = 10000;
 constexpr double kMinPointSeparationM = 0.01;  // consecutive waypoints closer are an error
-constexpr double kPi = std::numbers::pi;
 
 // One hard limit of validate(): a number field of a description D (its path below D), what is
 // allowed, and when the rule applies (nullptr = always). The tables below are the one source of
@@ -103,13 +102,13 @@ const std::vector<TrajectoryRule>& trajectory_rules() {
        [](const T& d) { return d.sway.yaw_coupling; }},
       {"attitude.roll_gain", Limit::closed(-kMaxGain, kMaxGain),
        [](const T& d) { return d.attitude.roll_gain; }},
-      {"attitude.max_roll", Limit::open(0.0, kPi / 2, "rad"),
+      {"attitude.max_roll", Limit::open(0.0, std::numbers::pi / 2, "rad"),
        [](const T& d) { return d.attitude.max_roll; }},
       {"attitude.roll_time_constant_s", Limit::closed(0.0, kMaxStepS, "s"),
        [](const T& d) { return d.attitude.roll_time_constant_s; }},
       {"attitude.pitch_gain", Limit::closed(0.0, kMaxGain),
        [](const T& d) { return d.attitude.pitch_gain; }},
-      {"attitude.max_pitch", Limit::open(0.0, kPi / 2, "rad"),
+      {"attitude.max_pitch", Limit::open(0.0, std::numbers::pi / 2, "rad"),
        [](const T& d) { return d.attitude.max_pitch; }},
   };
   return rules;
@@ -122,7 +121,8 @@ const std::vector<NavRule>& nav_rules() {
        [](const N& d) { return d.position_noise_sd_m; }},
       {"position_drift_m_per_sqrt_s", Limit::at_least(0.0, "m/sqrt(s)"),
        [](const N& d) { return d.position_drift_m_per_sqrt_s; }},
-      {"heading_bias", Limit::closed(-kPi, kPi, "rad"), [](const N& d) { return d.heading_bias; }},
+      {"heading_bias", Limit::closed(-std::numbers::pi, std::numbers::pi, "rad"),
+       [](const N& d) { return d.heading_bias; }},
       {"heading_noise_sd", Limit::at_least(0.0, "rad"),
        [](const N& d) { return d.heading_noise_sd; }},
       {"heading_drift_rad_per_sqrt_s", Limit::at_least(0.0, "rad/sqrt(s)"),

@@ -14,7 +14,7 @@ namespace {
 
 constexpr int kSize = 24;
 constexpr double kNoise = 0.05;
-const std::vector<std::string> kNames = {"bar", "ell", "tee"};
+const std::vector<std::string> kShapeNames = {"bar", "ell", "tee"};
 
 atr::Model train_shapes() {
   Rng rng(11, RngStream::kTraining, 20);
@@ -26,7 +26,7 @@ atr::Model train_shapes() {
       // a small spread of aspects around 20 deg
       lc.chip = testing::draw_rotated(shapes[static_cast<std::size_t>(c)], 20.0 + 0.3 * i, kSize,
                                       rng, kNoise);
-      lc.label = kNames[static_cast<std::size_t>(c)];
+      lc.label = kShapeNames[static_cast<std::size_t>(c)];
       chips.push_back(std::move(lc));
     }
   }
@@ -63,7 +63,7 @@ TEST_CASE("aligned classifier: class and offset of an off-centre chip") {
   const auto shapes = testing::rotation_shapes();
   for (int c = 0; c < 3; ++c) {
     for (const auto& [dr, dc] : {std::pair{3, -5}, {-4, 6}, {0, 0}, {1, 1}}) {
-      INFO("class " << kNames[static_cast<std::size_t>(c)] << " at " << dr << ", " << dc);
+      INFO("class " << kShapeNames[static_cast<std::size_t>(c)] << " at " << dr << ", " << dc);
       const atr::Chip chip =
           testing::draw_rotated(shapes[static_cast<std::size_t>(c)], 24.0, kSize, rng, kNoise);
       const atr::Chip ctx = embed(chip, search.rows, search.cols, dr, dc, rng);

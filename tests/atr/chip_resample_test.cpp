@@ -9,7 +9,7 @@ using namespace sonarloop::atr;
 
 namespace {
 
-Chip ramp(int w, int h) {
+Chip scrambled_chip(int w, int h) {
   Chip c;
   c.width = w;
   c.height = h;
@@ -57,7 +57,7 @@ TEST_CASE("chip resample: fractional ratios weigh pixels by the area covered") {
 }
 
 TEST_CASE("chip resample: the mean is kept at any ratio, same size is a copy") {
-  const Chip c = ramp(37, 23);
+  const Chip c = scrambled_chip(37, 23);
   for (const auto& [w, h] : {std::pair{64, 64}, std::pair{16, 9}, std::pair{37, 5}}) {
     const Chip r = resample_chip(c.view(), w, h);
     CHECK(r.width == w);
@@ -68,7 +68,7 @@ TEST_CASE("chip resample: the mean is kept at any ratio, same size is a copy") {
 }
 
 TEST_CASE("chip resample: bad sizes are errors") {
-  const Chip c = ramp(4, 4);
+  const Chip c = scrambled_chip(4, 4);
   CHECK_THROWS_AS(resample_chip(c.view(), 0, 4), std::invalid_argument);
   CHECK_THROWS_AS(resample_chip(Chip{}.view(), 4, 4), std::invalid_argument);
 }

@@ -17,8 +17,8 @@ namespace {
 
 constexpr double kPeriod_s = 0.0675;  // 13.5 cm between pings at 2 m/s
 constexpr double kAltitude_m = 7.5;
-constexpr double kBin_m = 0.05;
-constexpr int kBins = 1000;
+constexpr double kDetectorBin_m = 0.05;
+constexpr int kDetectorBins = 1000;
 
 using Thing = testing::SeabedObject;
 
@@ -105,24 +105,26 @@ TEST_CASE("detector: along-track positions are footprint positions (pitch)") {
 TEST_CASE("detector: background is the seabed's median level, robust to an object") {
   atr::Detector det;
   Rng rng(6, RngStream::kTraining, 91);
-  std::vector<float> line = testing::seabed_line(rng, kBins, kBin_m, kAltitude_m, -25.0);
-  testing::draw_object(line, kBin_m, kAltitude_m, Thing{1, 0.0, 15.0, 1.0, 0.5});
-  std::vector<float> b(kBins);
-  det.background(line, kBin_m, 200, b);
+  std::vector<float> line =
+      testing::seabed_line(rng, kDetectorBins, kDetectorBin_m, kAltitude_m, -25.0);
+  testing::draw_object(line, kDetectorBin_m, kAltitude_m, Thing{1, 0.0, 15.0, 1.0, 0.5});
+  std::vector<float> b(kDetectorBins);
+  det.background(line, kDetectorBin_m, 200, b);
   // fully developed speckle: median of 10 log10(E) is 10 log10(ln 2) = -1.6 dB; a median of 7
   // medians of 20 speckled bins scatters by about half a dB
   const double expected = -25.0 + 10.0 * std::log10(std::log(2.0));
   double sum = 0.0;
   int n = 0;
-  for (int k = 200; k < kBins; k += 25) {
+  for (int k = 200; k < kDetectorBins; k += 25) {
     CHECK(std::abs(b[static_cast<std::size_t>(k)] - expected) < 1.5);
     sum += b[static_cast<std::size_t>(k)];
     ++n;
   }
   CHECK(std::abs(sum / n - expected) < 0.5);
   // at the object itself (highlight and 1.1 m of shadow), still the seabed
-  CHECK(std::abs(b[static_cast<std::size_t>(testing::bin_of_ground(15.0, kAltitude_m, kBin_m))] -
-                 expected) < 1.5);
+  CHECK(std::abs(
+            b[static_cast<std::size_t>(testing::bin_of_ground(15.0, kAltitude_m, kDetectorBin_m))] -
+            expected) < 1.5);
 }
 
 TEST_CASE("detector: options are checked") {

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "tests/atr/classification_looks.h"
+
 namespace sonarloop::atr {
 namespace {
 
@@ -24,11 +26,7 @@ Model model_of(const std::vector<std::string>& names, const std::vector<float>& 
   return m;
 }
 
-Classification look(std::vector<float> d) {
-  Classification r;
-  r.class_distance = std::move(d);
-  return r;
-}
+using testing::look;
 
 TEST_CASE("fusion: the three normalisations, by hand") {
   const Model m = model_of({"a", "b"}, {10.0f, 20.0f});

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "tests/atr/classification_looks.h"
+
 namespace sonarloop::atr {
 namespace {
 
@@ -21,11 +23,7 @@ Model model3() {
   return m;
 }
 
-Classification look(std::vector<float> d) {
-  Classification r;
-  r.class_distance = std::move(d);
-  return r;
-}
+using testing::look;
 
 TEST_CASE("look fusion: looks within the radius join one object; the fused decision") {
   const Model m = model3();

@@ -5,6 +5,7 @@
 // (vehicle_loader_test covers the vehicle section key by key.)
 #include "config/loader/scenario_loader.h"
 #include "tests/config/config_error_checks.h"
+#include "tests/config/scenario_checks.h"
 
 #include <catch2/catch.hpp>
 #include <filesystem>
@@ -25,41 +26,11 @@ namespace render = sonarloop::render;
 namespace acoustics = sonarloop::acoustics;
 namespace scene = sonarloop::scene;
 
+using sonarloop::testing::check_same_sonar;
 using sonarloop::testing::contains;
+using sonarloop::testing::expect_scenario_error;
 
 namespace {
-
-// Parses `yaml` as "scenario.yaml", which must fail (testing::check_config_error).
-ConfigIssue expect_error(const std::string& yaml, const std::string& path,
-                         const std::vector<std::string>& parts = {}) {
-  return sonarloop::testing::expect_config_error(parse_scenario, "scenario.yaml", yaml, path,
-                                                 parts);
-}
-
-void check_same(const render::SonarDesc& a, const render::SonarDesc& b) {
-  CHECK(a.name == b.name);
-  CHECK(a.frequency_hz == b.frequency_hz);
-  CHECK(a.source_level_db == b.source_level_db);
-  CHECK(a.pulse_length_s == b.pulse_length_s);
-  CHECK(a.chirp_bandwidth_hz == b.chirp_bandwidth_hz);
-  CHECK(a.array_length_m == b.array_length_m);
-  CHECK(a.array_height_m == b.array_height_m);
-  CHECK(a.depression_deg == b.depression_deg);
-  CHECK(a.max_range_m == b.max_range_m);
-  CHECK(a.bin_size_m == b.bin_size_m);
-  CHECK(a.ping_period_s == b.ping_period_s);
-  CHECK(a.along_track == b.along_track);
-  CHECK(a.along_track_resolution_m == b.along_track_resolution_m);
-  CHECK(a.sample_type == b.sample_type);
-  CHECK(a.tvg == b.tvg);
-  CHECK(a.gain_db == b.gain_db);
-  CHECK(a.bottom_model == b.bottom_model);
-  CHECK(a.lambert_mu_db == b.lambert_mu_db);
-  CHECK(a.speckle == b.speckle);
-  CHECK(a.noise == b.noise);
-  CHECK(a.rays_per_bin == b.rays_per_bin);
-  CHECK(a.along_track_rays == b.along_track_rays);
-}
 
 // the scene fields a scenario test can tell apart (scene_loader_test compares every field)
 void check_same_scene(const scene::SceneDesc& a, const scene::SceneDesc& b) {
@@ -102,20 +73,20 @@ TEST_CASE("scenario_loader: no sonar key gives the pailhas_strip preset") {
   CHECK(s.scene.seed == 4);
   CHECK(s.scene.water.depth_m == 40);
   CHECK(s.scene.name == "survey");
-  check_same(s.sonar, builtin_sonar("pailhas_strip"));
+  check_same_sonar(s.sonar, builtin_sonar("pailhas_strip"));
   // the scene part is what the scene loader gives for the same text
   check_same_scene(s.scene, parse_scene("seed: 4\nwater: {depth_m: 40}\n", "survey.yaml"));
   // empty documents, empty or null sonar
-  check_same(parse_scenario("", "e.yaml").sonar, builtin_sonar("pailhas_strip"));
-  check_same(parse_scenario("sonar:\n", "e.yaml").sonar, builtin_sonar("pailhas_strip"));
-  check_same(parse_scenario("sonar: {}\n", "e.yaml").sonar, builtin_sonar("pailhas_strip"));
+  check_same_sonar(parse_scenario("", "e.yaml").sonar, builtin_sonar("pailhas_strip"));
+  check_same_sonar(parse_scenario("sonar:\n", "e.yaml").sonar, builtin_sonar("pailhas_strip"));
+  check_same_sonar(parse_scenario("sonar: {}\n", "e.yaml").sonar, builtin_sonar("pailhas_strip"));
 }
 
 TEST_CASE("scenario_loader: sonar as a preset name and as a map") {
   for (const auto& name : builtin_sonar_names()) {
     INFO(name);
     const auto s = parse_scenario("seed: 1\nsonar: " + name + "\n", "s.yaml");
-    check_same(s.sonar, builtin_sonar(name));
+    check_same_sonar(s.sonar, builtin_sonar(name));
     CHECK(s.scene.seed == 1);
   }
   // a map with a preset and overrides, keys of the scene on either side
@@ -133,7 +104,7 @@ water:
   expect.name = "towfish";
   expect.max_range_m = 100;
   expect.tvg = acoustics::TvgLaw::kPoint;
-  check_same(s.sonar, expect);
+  check_same_sonar(s.sonar, expect);
   CHECK(s.scene.seed == 2);
   CHECK(s.scene.water.depth_m == 60);
   // a map without a preset starts from pailhas_strip; flow style works
@@ -141,24 +112,26 @@ water:
   auto pailhas = builtin_sonar("pailhas_strip");
   pailhas.bin_size_m = 0.03;
   pailhas.along_track_resolution_m = 0.03;
-  check_same(f.sonar, pailhas);
+  check_same_sonar(f.sonar, pailhas);
 }
 
 TEST_CASE("scenario_loader: errors in the sonar section name their path") {
-  expect_error("sonar:\n  frequency_khz: 20\n", "sonar.frequency_khz",
-               {"20 is out of range (line 2, column 18)", "allowed: 50 .. 1000"});
-  auto i = expect_error("sonar:\n  frequncy_khz: 200\n", "sonar.frequncy_khz",
-                        {"unknown key 'frequncy_khz'", "allowed: name, preset, frequency_khz"});
+  expect_scenario_error("sonar:\n  frequency_khz: 20\n", "sonar.frequency_khz",
+                        {"20 is out of range (line 2, column 18)", "allowed: 50 .. 1000"});
+  auto i =
+      expect_scenario_error("sonar:\n  frequncy_khz: 200\n", "sonar.frequncy_khz",
+                            {"unknown key 'frequncy_khz'", "allowed: name, preset, frequency_khz"});
   CHECK(i.suggestion == "frequency_khz");
-  i = expect_error("sonar: sidescan_450\n", "sonar",
-                   {"'sidescan_450' is not a sonar preset",
-                    "allowed: sidescan_100khz, sidescan_450khz, sas_3cm, pailhas_strip, "
-                    "iver2_600khz, or a map of sonar keys"});
+  i = expect_scenario_error("sonar: sidescan_450\n", "sonar",
+                            {"'sidescan_450' is not a sonar preset",
+                             "allowed: sidescan_100khz, sidescan_450khz, sas_3cm, pailhas_strip, "
+                             "iver2_600khz, or a map of sonar keys"});
   CHECK(i.suggestion == "sidescan_450khz");
-  expect_error("sonar:\n  preset: nope\n", "sonar.preset", {"'nope' is not a sonar preset"});
-  expect_error("sonar: [1, 2]\n", "sonar", {"is not a sonar preset name or a map"});
-  expect_error("sonar:\n  max_range_m: 1000\n  bin_size_cm: 1\n", "sonar.bin_size_cm",
-               {"100000 samples per side"});
+  expect_scenario_error("sonar:\n  preset: nope\n", "sonar.preset",
+                        {"'nope' is not a sonar preset"});
+  expect_scenario_error("sonar: [1, 2]\n", "sonar", {"is not a sonar preset name or a map"});
+  expect_scenario_error("sonar:\n  max_range_m: 1000\n  bin_size_cm: 1\n", "sonar.bin_size_cm",
+                        {"100000 samples per side"});
 }
 
 TEST_CASE("scenario_loader: the vehicle section beside the others") {
@@ -198,24 +171,24 @@ seabed:
   origin_m: [-30, -100]
   extent_m: [200, 200]
 )";
-  expect_error(moved, "vehicle.trajectory",
-               {"the planned path leaves the seabed extent", "U-turn after lawnmower leg 0",
-                "north -30 .. 170, east -100 .. 100"});
+  expect_scenario_error(moved, "vehicle.trajectory",
+                        {"the planned path leaves the seabed extent",
+                         "U-turn after lawnmower leg 0", "north -30 .. 170, east -100 .. 100"});
   // errors in the section name their full path
-  expect_error("vehicle:\n  trajectory:\n    kind: zigzag\n", "vehicle.trajectory.kind",
-               {"'zigzag' is not a trajectory kind (line 3, column 11)",
-                "allowed: straight, waypoints, lawnmower"});
-  expect_error("vehicle: lawnmower\n", "vehicle",
-               {"'lawnmower' is not a map", "allowed: a map with trajectory, nav"});
+  expect_scenario_error("vehicle:\n  trajectory:\n    kind: zigzag\n", "vehicle.trajectory.kind",
+                        {"'zigzag' is not a trajectory kind (line 3, column 11)",
+                         "allowed: straight, waypoints, lawnmower"});
+  expect_scenario_error("vehicle: lawnmower\n", "vehicle",
+                        {"'lawnmower' is not a map", "allowed: a map with trajectory, nav"});
 }
 
 TEST_CASE("scenario_loader: unknown top-level keys are still reported") {
-  auto i = expect_error(
+  auto i = expect_scenario_error(
       "seed: 1\nsonr: sas_3cm\n", "sonr",
       {"unknown key 'sonr'", "allowed: seed, name, origin, water, seabed, targets, sonar, vehicle",
        "(did you mean 'sonar'?)"});
   CHECK(i.line == 2);
-  i = expect_error("seeed: 1\n", "seeed", {"(did you mean 'seed'?)"});
+  i = expect_scenario_error("seeed: 1\n", "seeed", {"(did you mean 'seed'?)"});
   // every unknown key in one error, in file order
   try {
     parse_scenario("bogus: 1\nsonar: sas_3cm\nplatform: {}\n", "many.yaml");
@@ -226,12 +199,13 @@ TEST_CASE("scenario_loader: unknown top-level keys are still reported") {
     CHECK(e.issues()[1].path == "platform");
   }
   // the whole document must be a map
-  expect_error("- 1\n", "",
-               {"is not a map",
-                "a map with seed, name, origin, water, seabed, "
-                "targets, sonar, vehicle"});
+  expect_scenario_error("- 1\n", "",
+                        {"is not a map",
+                         "a map with seed, name, origin, water, seabed, "
+                         "targets, sonar, vehicle"});
   // scene errors keep their paths
-  expect_error("water: {depth_m: 1}\nsonar: sas_3cm\n", "water.depth_m", {"1 is out of range"});
+  expect_scenario_error("water: {depth_m: 1}\nsonar: sas_3cm\n", "water.depth_m",
+                        {"1 is out of range"});
 }
 
 TEST_CASE("scenario_loader: every scenario shipped in config/ loads, and the embedded default") {
@@ -246,7 +220,7 @@ TEST_CASE("scenario_loader: every scenario shipped in config/ loads, and the emb
   }
   const auto embedded = parse_scenario(default_scenario_yaml(), "<default scenario>");
   const auto from_file = load_scenario(SONARLOOP_SOURCE_DIR "/config/default.yaml");
-  check_same(embedded.sonar, from_file.sonar);
+  check_same_sonar(embedded.sonar, from_file.sonar);
   CHECK(embedded.scene.seed == from_file.scene.seed);
   CHECK(embedded.scene.targets.size() == from_file.scene.targets.size());
 }
@@ -254,8 +228,8 @@ TEST_CASE("scenario_loader: every scenario shipped in config/ loads, and the emb
 TEST_CASE("scenario_loader: config/reference.yaml gives exactly the documented defaults") {
   const auto ref = load_scenario(SONARLOOP_SOURCE_DIR "/config/reference.yaml");
   // the sonar: the pailhas_strip preset, which is also the default of an empty scenario
-  check_same(ref.sonar, builtin_sonar("pailhas_strip"));
-  check_same(ref.sonar, parse_scenario("", "empty.yaml").sonar);
+  check_same_sonar(ref.sonar, builtin_sonar("pailhas_strip"));
+  check_same_sonar(ref.sonar, parse_scenario("", "empty.yaml").sonar);
   // the scene: the defaults of an empty scenario (scene_loader_test checks every field)
   auto empty = parse_scenario("", "reference.yaml").scene;
   check_same_scene(ref.scene, empty);

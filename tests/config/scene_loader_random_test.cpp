@@ -22,6 +22,7 @@
 #include "sim/seabed/sediment.h"
 #include "sim/targets/material.h"
 #include "sim/targets/target_type.h"
+#include "tests/config/config_test_text.h"
 #include "tests/config/scene_loader_checks.h"
 #include "tests/support/temp_dir.h"
 
@@ -34,6 +35,7 @@ namespace scene = sonarloop::scene;
 namespace seabed = sonarloop::seabed;
 namespace targets = sonarloop::targets;
 using namespace sonarloop::config::scene_loader_checks;
+using sonarloop::testing::real_text;
 
 // ---------------------------------------------------------------------------------------------
 // seeded randomized test (docs/style.md habit 22)
@@ -61,12 +63,6 @@ struct YEntry {
   std::string key;
   YNode value;
 };
-
-std::string real_text(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
 
 YNode scalar(std::string text, YNode::Accepts a) {
   YNode n;

@@ -4,6 +4,8 @@
 // valid sonars and checks that corruptions are always rejected with a ConfigError.
 #include "config/loader/sonar_loader.h"
 #include "tests/config/config_error_checks.h"
+#include "tests/config/config_test_text.h"
+#include "tests/config/scenario_checks.h"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -30,7 +32,10 @@ namespace render = sonarloop::render;
 namespace acoustics = sonarloop::acoustics;
 namespace scene = sonarloop::scene;
 
+using sonarloop::testing::check_same_sonar;
 using sonarloop::testing::contains;
+using sonarloop::testing::real_text;
+using sonarloop::testing::slurp;
 
 namespace {
 
@@ -62,43 +67,10 @@ const std::vector<std::string> kKeys = {"name",
                                         "rays_per_bin",
                                         "along_track_rays"};
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 // Parses `yaml` as "sonar.yaml", which must fail (testing::check_config_error).
-ConfigIssue expect_error(const std::string& yaml, const std::string& path,
-                         const std::vector<std::string>& parts = {}) {
+ConfigIssue expect_sonar_error(const std::string& yaml, const std::string& path,
+                               const std::vector<std::string>& parts = {}) {
   return sonarloop::testing::expect_config_error(parse_sonar, "sonar.yaml", yaml, path, parts);
-}
-
-// exact comparison, field by field
-void check_same(const render::SonarDesc& a, const render::SonarDesc& b) {
-  CHECK(a.name == b.name);
-  CHECK(a.frequency_hz == b.frequency_hz);
-  CHECK(a.source_level_db == b.source_level_db);
-  CHECK(a.pulse_length_s == b.pulse_length_s);
-  CHECK(a.chirp_bandwidth_hz == b.chirp_bandwidth_hz);
-  CHECK(a.array_length_m == b.array_length_m);
-  CHECK(a.array_height_m == b.array_height_m);
-  CHECK(a.depression_deg == b.depression_deg);
-  CHECK(a.max_range_m == b.max_range_m);
-  CHECK(a.bin_size_m == b.bin_size_m);
-  CHECK(a.ping_period_s == b.ping_period_s);
-  CHECK(a.along_track == b.along_track);
-  CHECK(a.along_track_resolution_m == b.along_track_resolution_m);
-  CHECK(a.sample_type == b.sample_type);
-  CHECK(a.tvg == b.tvg);
-  CHECK(a.gain_db == b.gain_db);
-  CHECK(a.bottom_model == b.bottom_model);
-  CHECK(a.lambert_mu_db == b.lambert_mu_db);
-  CHECK(a.speckle == b.speckle);
-  CHECK(a.noise == b.noise);
-  CHECK(a.rays_per_bin == b.rays_per_bin);
-  CHECK(a.along_track_rays == b.along_track_rays);
 }
 
 // The documented pailhas_strip preset (config/sonars/pailhas_strip.yaml, config/reference.yaml).
@@ -140,16 +112,16 @@ double deg(double rad) {
 
 TEST_CASE("sonar_loader: absent, empty and null give the pailhas_strip preset") {
   const auto expect = documented_pailhas_strip();
-  check_same(builtin_sonar("pailhas_strip"), expect);
-  check_same(builtin_sonar(kDefaultSonarPreset), expect);
+  check_same_sonar(builtin_sonar("pailhas_strip"), expect);
+  check_same_sonar(builtin_sonar(kDefaultSonarPreset), expect);
   for (const std::string text :
        {"", "{}\n", "~\n", "# only a comment\n", "preset: pailhas_strip\n", "pailhas_strip\n"}) {
     INFO("text: " << text);
-    check_same(parse_sonar(text, "s.yaml"), expect);
+    check_same_sonar(parse_sonar(text, "s.yaml"), expect);
   }
   // a sonar key that is absent from a larger document
   const Field root = parse_document("other: 1\n", "doc.yaml");
-  check_same(parse_sonar_node(root.child("sonar")), expect);
+  check_same_sonar(parse_sonar_node(root.child("sonar")), expect);
 }
 
 TEST_CASE("sonar_loader: every key is parsed and converted to SI") {
@@ -253,7 +225,7 @@ TEST_CASE("sonar_loader: the built-in presets are the files of config/sonars, em
   // the embedded text is the file's text (the build regenerates it when a file changes)
   for (const auto& [name, text] : builtin_sonar_presets()) {
     INFO(name);
-    CHECK(text == read_file(SONARLOOP_SOURCE_DIR "/config/sonars/" + name + ".yaml"));
+    CHECK(text == slurp(SONARLOOP_SOURCE_DIR "/config/sonars/" + name + ".yaml"));
   }
 }
 
@@ -269,16 +241,16 @@ TEST_CASE("sonar_loader: each preset loads, is complete and named, and round-tri
       CHECK(root.has(key) == (key != "preset"));
     }
     // as a file, as text, by name as a scalar node, and written back out
-    check_same(load_sonar(SONARLOOP_SOURCE_DIR "/config/sonars/" + name + ".yaml"), d);
-    check_same(parse_sonar(text, name + ".yaml"), d);
-    check_same(parse_sonar(name, "by-name.yaml"), d);
+    check_same_sonar(load_sonar(SONARLOOP_SOURCE_DIR "/config/sonars/" + name + ".yaml"), d);
+    check_same_sonar(parse_sonar(text, name + ".yaml"), d);
+    check_same_sonar(parse_sonar(name, "by-name.yaml"), d);
     const std::string yaml = format_sonar_yaml(d);
     INFO(yaml);
-    check_same(parse_sonar(yaml, "written.yaml"), d);
+    check_same_sonar(parse_sonar(yaml, "written.yaml"), d);
     CHECK(format_sonar_yaml(parse_sonar(yaml, "written.yaml")) == yaml);
     // indented, as under a scenario's sonar: key
     const std::string nested = "sonar:\n" + format_sonar_yaml(d, 2);
-    check_same(parse_sonar_node(parse_document(nested, "nested.yaml").child("sonar")), d);
+    check_same_sonar(parse_sonar_node(parse_document(nested, "nested.yaml").child("sonar")), d);
     // the renderer accepts it
     CHECK_NOTHROW(render::make_sonar_setup(d, scene::WaterDesc{}));
   }
@@ -345,15 +317,15 @@ TEST_CASE("sonar_loader: a preset with overrides") {
   auto expect = base;
   expect.max_range_m = 30;
   expect.gain_db = 6;
-  check_same(d, expect);
+  check_same_sonar(d, expect);
   // the name: the preset's unless given; empty = the preset's
   CHECK(parse_sonar("preset: sas_3cm\n", "a.yaml").name == "sas_3cm");
   CHECK(parse_sonar("preset: sas_3cm\nname: my sas\n", "a.yaml").name == "my sas");
   CHECK(parse_sonar("preset: sas_3cm\nname: \"\"\n", "a.yaml").name == "sas_3cm");
   CHECK(parse_sonar("bin_size_cm: 2\n", "a.yaml").name == "pailhas_strip");
   // key order does not matter: preset after the overrides
-  check_same(parse_sonar("gain_db: 6\nmax_range_m: 30\npreset: sidescan_450khz\n", "o.yaml"),
-             expect);
+  check_same_sonar(parse_sonar("gain_db: 6\nmax_range_m: 30\npreset: sidescan_450khz\n", "o.yaml"),
+                   expect);
   // switching a strip preset to a beam
   const auto beam = parse_sonar("along_track: beam\n", "b.yaml");
   CHECK(beam.along_track == render::AlongTrackModel::kBeam);
@@ -364,16 +336,17 @@ TEST_CASE("sonar_loader: a preset with overrides") {
 // validation
 
 TEST_CASE("sonar_loader: unknown presets list the available names") {
-  auto i = expect_error("preset: sidescan_100\n", "preset",
-                        {"'sidescan_100' is not a sonar preset", "(line 1, column 9)",
-                         "allowed: sidescan_100khz, sidescan_450khz, sas_3cm, pailhas_strip, "
-                         "iver2_600khz"});
+  auto i = expect_sonar_error("preset: sidescan_100\n", "preset",
+                              {"'sidescan_100' is not a sonar preset", "(line 1, column 9)",
+                               "allowed: sidescan_100khz, sidescan_450khz, sas_3cm, pailhas_strip, "
+                               "iver2_600khz"});
   CHECK(i.suggestion == "sidescan_100khz");
   // a preset name as the whole node: a map is allowed too
-  i = expect_error("sas3cm\n", "", {"'sas3cm' is not a sonar preset", "or a map of sonar keys"});
+  i = expect_sonar_error("sas3cm\n", "",
+                         {"'sas3cm' is not a sonar preset", "or a map of sonar keys"});
   CHECK(i.suggestion == "sas_3cm");
-  i = expect_error("preset: [a]\n", "preset", {"is not a sonar preset name"});
-  i = expect_error("preset: ~\n", "preset", {"has no value"});
+  i = expect_sonar_error("preset: [a]\n", "preset", {"is not a sonar preset name"});
+  i = expect_sonar_error("preset: ~\n", "preset", {"has no value"});
   // by name, from code
   try {
     builtin_sonar("pailhas");
@@ -388,13 +361,15 @@ TEST_CASE("sonar_loader: unknown presets list the available names") {
 }
 
 TEST_CASE("sonar_loader: unknown keys, with suggestions") {
-  auto i = expect_error("frequency_hz: 100000\n", "frequency_hz",
-                        {"unknown key 'frequency_hz'",
-                         "allowed: name, preset, frequency_khz, source_level_db, pulse_length_us",
-                         "rays_per_bin, along_track_rays", "(did you mean 'frequency_khz'?)"});
-  i = expect_error("bin_size_m: 0.05\n", "bin_size_m", {"(did you mean 'bin_size_cm'?)"});
-  i = expect_error("depresion_deg: 10\n", "depresion_deg", {"(did you mean 'depression_deg'?)"});
-  i = expect_error("beam_pattern: sinc\n", "beam_pattern", {"unknown key 'beam_pattern'"});
+  auto i =
+      expect_sonar_error("frequency_hz: 100000\n", "frequency_hz",
+                         {"unknown key 'frequency_hz'",
+                          "allowed: name, preset, frequency_khz, source_level_db, pulse_length_us",
+                          "rays_per_bin, along_track_rays", "(did you mean 'frequency_khz'?)"});
+  i = expect_sonar_error("bin_size_m: 0.05\n", "bin_size_m", {"(did you mean 'bin_size_cm'?)"});
+  i = expect_sonar_error("depresion_deg: 10\n", "depresion_deg",
+                         {"(did you mean 'depression_deg'?)"});
+  i = expect_sonar_error("beam_pattern: sinc\n", "beam_pattern", {"unknown key 'beam_pattern'"});
   CHECK(i.suggestion.empty());
   // every unknown key is listed
   try {
@@ -408,34 +383,36 @@ TEST_CASE("sonar_loader: unknown keys, with suggestions") {
 }
 
 TEST_CASE("sonar_loader: wrong types") {
-  expect_error("frequency_khz: abc\n", "frequency_khz", {"'abc' is not a number", "50 .. 1000"});
-  expect_error("frequency_khz: '300'\n", "frequency_khz", {"is a quoted string, not a number"});
-  expect_error("frequency_khz: .nan\n", "frequency_khz", {"is not a finite number"});
-  expect_error("frequency_khz: [300]\n", "frequency_khz", {"is not a number"});
-  expect_error("max_range_m:\n", "max_range_m", {"has no value"});
-  expect_error("speckle: yes\n", "speckle", {"'yes' is not true or false"});
-  expect_error("noise: 1\n", "noise", {"true or false"});
-  expect_error("rays_per_bin: 2.5\n", "rays_per_bin", {"'2.5' is not an integer", "0 .. 64"});
-  expect_error("along_track_rays: abc\n", "along_track_rays", {"an integer 0 .. 256"});
-  expect_error("along_track: [beam]\n", "along_track", {"beam, strip"});
-  auto i = expect_error("along_track: beams\n", "along_track",
-                        {"'beams' is not a known along-track model", "allowed: beam, strip"});
+  expect_sonar_error("frequency_khz: abc\n", "frequency_khz",
+                     {"'abc' is not a number", "50 .. 1000"});
+  expect_sonar_error("frequency_khz: '300'\n", "frequency_khz",
+                     {"is a quoted string, not a number"});
+  expect_sonar_error("frequency_khz: .nan\n", "frequency_khz", {"is not a finite number"});
+  expect_sonar_error("frequency_khz: [300]\n", "frequency_khz", {"is not a number"});
+  expect_sonar_error("max_range_m:\n", "max_range_m", {"has no value"});
+  expect_sonar_error("speckle: yes\n", "speckle", {"'yes' is not true or false"});
+  expect_sonar_error("noise: 1\n", "noise", {"true or false"});
+  expect_sonar_error("rays_per_bin: 2.5\n", "rays_per_bin", {"'2.5' is not an integer", "0 .. 64"});
+  expect_sonar_error("along_track_rays: abc\n", "along_track_rays", {"an integer 0 .. 256"});
+  expect_sonar_error("along_track: [beam]\n", "along_track", {"beam, strip"});
+  auto i = expect_sonar_error("along_track: beams\n", "along_track",
+                              {"'beams' is not a known along-track model", "allowed: beam, strip"});
   CHECK(i.suggestion == "beam");
-  i = expect_error("sample_type: uint32\n", "sample_type",
-                   {"is not a sample type", "allowed: uint8, uint16, int16, float32"});
+  i = expect_sonar_error("sample_type: uint32\n", "sample_type",
+                         {"is not a sample type", "allowed: uint8, uint16, int16, float32"});
   CHECK(i.suggestion == "uint16");
-  expect_error("tvg: 30log\n", "tvg",
-               {"is not a TVG law", "allowed: auto, area, point, spherical"});
-  expect_error("bottom_model: apl-uw\n", "bottom_model",
-               {"is not a bottom model", "allowed: apl, lambert"});
-  expect_error("name: [a, b]\n", "name", {"is not text"});
-  expect_error("name: ~\n", "name", {"has no value"});
+  expect_sonar_error("tvg: 30log\n", "tvg",
+                     {"is not a TVG law", "allowed: auto, area, point, spherical"});
+  expect_sonar_error("bottom_model: apl-uw\n", "bottom_model",
+                     {"is not a bottom model", "allowed: apl, lambert"});
+  expect_sonar_error("name: [a, b]\n", "name", {"is not text"});
+  expect_sonar_error("name: ~\n", "name", {"has no value"});
   // the whole node
-  expect_error("[1, 2]\n", "", {"is not a sonar preset name or a map", "pailhas_strip"});
-  expect_error("- frequency_khz: 100\n", "", {"is not a sonar preset name or a map"});
+  expect_sonar_error("[1, 2]\n", "", {"is not a sonar preset name or a map", "pailhas_strip"});
+  expect_sonar_error("- frequency_khz: 100\n", "", {"is not a sonar preset name or a map"});
   // syntax errors and duplicate keys
-  expect_error("frequency_khz: [100\n", "", {"YAML syntax error"});
-  expect_error("gain_db: 1\ngain_db: 2\n", "gain_db", {"duplicate key 'gain_db'"});
+  expect_sonar_error("frequency_khz: [100\n", "", {"YAML syntax error"});
+  expect_sonar_error("gain_db: 1\ngain_db: 2\n", "gain_db", {"duplicate key 'gain_db'"});
 }
 
 TEST_CASE("sonar_loader: out-of-range values name the key, value and range") {
@@ -478,9 +455,10 @@ TEST_CASE("sonar_loader: out-of-range values name the key, value and range") {
   };
   for (const auto& c : cases) {
     INFO(c.key << ": " << c.value);
-    const auto i = expect_error(c.key + ": " + c.value + "\n", c.key,
-                                {c.value + " is out of range", "allowed: " + c.allowed,
-                                 "(line 1, column " + std::to_string(c.key.size() + 3) + ")"});
+    const auto i =
+        expect_sonar_error(c.key + ": " + c.value + "\n", c.key,
+                           {c.value + " is out of range", "allowed: " + c.allowed,
+                            "(line 1, column " + std::to_string(c.key.size() + 3) + ")"});
     CHECK(i.line == 1);
   }
   // each end is allowed
@@ -496,29 +474,30 @@ TEST_CASE("sonar_loader: out-of-range values name the key, value and range") {
 
 TEST_CASE("sonar_loader: the ping period is at least the two-way travel time of the range") {
   // issue 11: 1e-9 s was accepted ("1000000000.00 pings/s") and `run` never ended
-  expect_error("ping_period_s: 1e-9\n", "ping_period_s",
-               {"1e-09 s is shorter than the two-way travel time 2 max_range_m / c = 0.0666667 s "
-                "of max_range_m 50 (c = 1500 m/s)",
-                "allowed: 0 (auto: 2 max_range_m / c), or 0.0667 .. 10 for max_range_m 50"});
-  expect_error("max_range_m: 30\nping_period_s: 0.0399\n", "ping_period_s",
-               {"shorter than the two-way travel time", "0.04 .. 10 for max_range_m 30"});
+  expect_sonar_error(
+      "ping_period_s: 1e-9\n", "ping_period_s",
+      {"1e-09 s is shorter than the two-way travel time 2 max_range_m / c = 0.0666667 s "
+       "of max_range_m 50 (c = 1500 m/s)",
+       "allowed: 0 (auto: 2 max_range_m / c), or 0.0667 .. 10 for max_range_m 50"});
+  expect_sonar_error("max_range_m: 30\nping_period_s: 0.0399\n", "ping_period_s",
+                     {"shorter than the two-way travel time", "0.04 .. 10 for max_range_m 30"});
   // exactly the two-way time, 0 (auto) and longer periods are fine
   CHECK(parse_sonar("max_range_m: 30\nping_period_s: 0.04\n", "p").ping_period_s == 0.04);
   CHECK(parse_sonar("ping_period_s: 0\n", "p").ping_period_s == 0.0);
   CHECK(parse_sonar("ping_period_s: 0.5\n", "p").ping_period_s == 0.5);
   // the preset's period with a longer range set here: max_range_m is to blame
-  expect_error("preset: iver2_600khz\nmax_range_m: 100\n", "max_range_m",
-               {"100 has a two-way travel time 2 max_range_m / c = 0.133333 s, longer than "
-                "ping_period_s 0.1135",
-                "allowed: <= 85.125 for ping_period_s 0.1135; or ping_period_s 0 (auto)"});
+  expect_sonar_error("preset: iver2_600khz\nmax_range_m: 100\n", "max_range_m",
+                     {"100 has a two-way travel time 2 max_range_m / c = 0.133333 s, longer than "
+                      "ping_period_s 0.1135",
+                      "allowed: <= 85.125 for ping_period_s 0.1135; or ping_period_s 0 (auto)"});
 }
 
 TEST_CASE("sonar_loader: range bin below the maximum range, at most 65535 samples") {
-  expect_error("max_range_m: 1\nbin_size_cm: 100\n", "bin_size_cm",
-               {"100 is not below max_range_m 1", "allowed: below max_range_m (100 cm)"});
+  expect_sonar_error("max_range_m: 1\nbin_size_cm: 100\n", "bin_size_cm",
+                     {"100 is not below max_range_m 1", "allowed: below max_range_m (100 cm)"});
   CHECK(parse_sonar("max_range_m: 1\nbin_size_cm: 99\n", "b").bin_size_m == 0.99);
 
-  const auto i = expect_error(
+  const auto i = expect_sonar_error(
       "max_range_m: 1000\nbin_size_cm: 1\n", "bin_size_cm",
       {"1 gives 100000 samples per side over max_range_m 1000",
        "allowed: >= 1.526 for max_range_m 1000 (at most 65535 samples per side, the XTF "
@@ -531,44 +510,46 @@ TEST_CASE("sonar_loader: range bin below the maximum range, at most 65535 sample
   // exactly 65535 samples is allowed, 65536 is not
   const auto edge = parse_sonar("max_range_m: 655.35\nbin_size_cm: 1\n", "b");
   CHECK(render::make_sonar_setup(edge, scene::WaterDesc{}).bins == 65535);
-  expect_error("max_range_m: 655.36\nbin_size_cm: 1\n", "bin_size_cm", {"gives 65536 samples"});
+  expect_sonar_error("max_range_m: 655.36\nbin_size_cm: 1\n", "bin_size_cm",
+                     {"gives 65536 samples"});
 }
 
 TEST_CASE("sonar_loader: a chirp's range resolution spans at most 4 bins") {
   // pailhas_strip has 5 cm bins: c/(2B) <= 20 cm needs B >= 3.75 kHz
-  expect_error("chirp_bandwidth_khz: 2\n", "chirp_bandwidth_khz",
-               {"2 gives a range resolution c/(2B) = 37.5 cm (c = 1500 m/s), coarser than 4 range "
-                "bins of bin_size_cm 5",
-                "allowed: 0 (CW), or >= 3.75 for bin_size_cm 5; or larger bins (bin_size_cm >= "
-                "9.375)"});
+  expect_sonar_error(
+      "chirp_bandwidth_khz: 2\n", "chirp_bandwidth_khz",
+      {"2 gives a range resolution c/(2B) = 37.5 cm (c = 1500 m/s), coarser than 4 range "
+       "bins of bin_size_cm 5",
+       "allowed: 0 (CW), or >= 3.75 for bin_size_cm 5; or larger bins (bin_size_cm >= "
+       "9.375)"});
   CHECK(parse_sonar("chirp_bandwidth_khz: 3.75\n", "c").chirp_bandwidth_hz == 3750.0);
   CHECK(parse_sonar("chirp_bandwidth_khz: 2\nbin_size_cm: 9.375\n", "c").bin_size_m == 0.09375);
   // both set: the bandwidth is named
-  expect_error("chirp_bandwidth_khz: 2\nbin_size_cm: 9\n", "chirp_bandwidth_khz",
-               {"coarser than 4 range bins of bin_size_cm 9"});
+  expect_sonar_error("chirp_bandwidth_khz: 2\nbin_size_cm: 9\n", "chirp_bandwidth_khz",
+                     {"coarser than 4 range bins of bin_size_cm 9"});
   // the hint's bound is sufficient after rounding
-  expect_error("chirp_bandwidth_khz: 1\nbin_size_cm: 3\n", "chirp_bandwidth_khz",
-               {">= 6.25 for bin_size_cm 3"});
+  expect_sonar_error("chirp_bandwidth_khz: 1\nbin_size_cm: 3\n", "chirp_bandwidth_khz",
+                     {">= 6.25 for bin_size_cm 3"});
   CHECK_NOTHROW(parse_sonar("chirp_bandwidth_khz: 6.25\nbin_size_cm: 3\n", "c"));
   // a chirp's band stays above 0 Hz: B < 2 f
-  expect_error("frequency_khz: 50\narray_length_m: 1\nchirp_bandwidth_khz: 100\n",
-               "chirp_bandwidth_khz",
-               {"100 is not below twice frequency_khz 50", "allowed: 0 (CW), or below 100"});
+  expect_sonar_error("frequency_khz: 50\narray_length_m: 1\nchirp_bandwidth_khz: 100\n",
+                     "chirp_bandwidth_khz",
+                     {"100 is not below twice frequency_khz 50", "allowed: 0 (CW), or below 100"});
   CHECK_NOTHROW(
       parse_sonar("frequency_khz: 50\narray_length_m: 1\nchirp_bandwidth_khz: 99.5\n", "c"));
 }
 
 TEST_CASE("sonar_loader: the array must be longer than a wavelength") {
   // at 50 kHz the wavelength is 1500/50e3 = 3 cm
-  expect_error("frequency_khz: 50\narray_length_m: 0.03\n", "array_length_m",
-               {"0.03 is not longer than the wavelength c/f = 0.03 m at frequency_khz 50 "
-                "(c = 1500 m/s): the array would form no beam",
-                "allowed: more than 0.03 for frequency_khz 50"});
-  expect_error("frequency_khz: 50\narray_length_m: 0.02\n", "array_length_m", {"no beam"});
+  expect_sonar_error("frequency_khz: 50\narray_length_m: 0.03\n", "array_length_m",
+                     {"0.03 is not longer than the wavelength c/f = 0.03 m at frequency_khz 50 "
+                      "(c = 1500 m/s): the array would form no beam",
+                      "allowed: more than 0.03 for frequency_khz 50"});
+  expect_sonar_error("frequency_khz: 50\narray_length_m: 0.02\n", "array_length_m", {"no beam"});
   CHECK_NOTHROW(parse_sonar("frequency_khz: 50\narray_length_m: 0.031\n", "a"));
   CHECK_NOTHROW(parse_sonar("frequency_khz: 75.1\narray_length_m: 0.02\n", "a"));
-  expect_error("frequency_khz: 75\narray_length_m: 0.02\n", "array_length_m",
-               {"more than 0.02 for frequency_khz 75"});
+  expect_sonar_error("frequency_khz: 75\narray_length_m: 0.02\n", "array_length_m",
+                     {"more than 0.02 for frequency_khz 75"});
 }
 
 TEST_CASE("sonar_loader: load_sonar reads a file and names it in errors") {
@@ -631,10 +612,10 @@ TEST_CASE("sonar_loader: format_sonar_yaml quotes names and round-trips unusual 
   CHECK(contains(short_yaml, "\nalong_track_resolution_cm: 7\n"));
   CHECK(contains(short_yaml, "\npulse_length_us: 70\n"));
   CHECK(contains(short_yaml, "\nfrequency_khz: 123.4\n"));
-  check_same(parse_sonar(short_yaml, "short.yaml"), s);
+  check_same_sonar(parse_sonar(short_yaml, "short.yaml"), s);
   // and messages quote values the same way
-  expect_error("bin_size_cm: 7\nchirp_bandwidth_khz: 1\n", "chirp_bandwidth_khz",
-               {"coarser than 4 range bins of bin_size_cm 7"});
+  expect_sonar_error("bin_size_cm: 7\nchirp_bandwidth_khz: 1\n", "chirp_bandwidth_khz",
+                     {"coarser than 4 range bins of bin_size_cm 7"});
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -678,12 +659,6 @@ const std::vector<KeySpec>& key_specs() {
       {"along_track_rays", Kind::kInt, 0, 256, {}},
   };
   return specs;
-}
-
-std::string real_text(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
 }
 
 // Applies one key (its YAML text already validated by the generator) to the expected SonarDesc.
@@ -916,7 +891,7 @@ TEST_CASE("sonar_loader: random valid sonars round-trip, corruptions are rejecte
     check_near(got, expect);
     if (got.chirp_bandwidth_hz > 0) ++with_chirp;
     // written out and read back, bit for bit
-    check_same(parse_sonar(format_sonar_yaml(got), "written.yaml"), got);
+    check_same_sonar(parse_sonar(format_sonar_yaml(got), "written.yaml"), got);
     // the renderer accepts every sonar the loader accepts
     try {
       const auto setup = render::make_sonar_setup(got, scene::WaterDesc{});

@@ -6,6 +6,8 @@
 // random valid vehicles and checks that corruptions are always rejected with a ConfigError.
 #include "config/loader/vehicle_loader.h"
 #include "tests/config/config_error_checks.h"
+#include "tests/config/config_test_text.h"
+#include "tests/config/scenario_checks.h"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -40,6 +42,9 @@ using vehicle::TurnDirection;
 using vehicle::VehicleDesc;
 
 using sonarloop::testing::contains;
+using sonarloop::testing::expect_scenario_error;
+using sonarloop::testing::real_text;
+using sonarloop::testing::slurp;
 
 namespace {
 
@@ -48,24 +53,10 @@ double rad(double deg) {
   return deg * (std::numbers::pi / 180.0);
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 // Parses `yaml` as a standalone vehicle "vehicle.yaml", which must fail.
-ConfigIssue expect_error(const std::string& yaml, const std::string& path,
-                         const std::vector<std::string>& parts = {}) {
+ConfigIssue expect_vehicle_error(const std::string& yaml, const std::string& path,
+                                 const std::vector<std::string>& parts = {}) {
   return sonarloop::testing::expect_config_error(parse_vehicle, "vehicle.yaml", yaml, path, parts);
-}
-
-// Parses `yaml` as a scenario "scenario.yaml", which must fail.
-ConfigIssue expect_scenario_error(const std::string& yaml, const std::string& path,
-                                  const std::vector<std::string>& parts = {}) {
-  return sonarloop::testing::expect_config_error(parse_scenario, "scenario.yaml", yaml, path,
-                                                 parts);
 }
 
 VehicleDesc parse_ok(const std::string& yaml) {
@@ -79,7 +70,7 @@ VehicleDesc parse_ok(const std::string& yaml) {
 }
 
 // exact comparison, field by field
-void check_same(const VehicleDesc& a, const VehicleDesc& b) {
+void check_same_vehicle(const VehicleDesc& a, const VehicleDesc& b) {
   const auto& ta = a.trajectory;
   const auto& tb = b.trajectory;
   CHECK(ta.kind == tb.kind);
@@ -178,12 +169,12 @@ TEST_CASE("vehicle_loader: absent, empty and null give VehicleDesc{}") {
   for (const std::string yaml : {"", "{}", "trajectory:\nnav:\n", "trajectory: {}\nnav: {}\n",
                                  "trajectory: {depth: {}, sway: ~, attitude: {}}\n"}) {
     INFO(yaml);
-    check_same(parse_ok(yaml), def);
+    check_same_vehicle(parse_ok(yaml), def);
   }
   // in a scenario: no vehicle key, a null one, an empty map
   for (const std::string yaml : {"seed: 1\n", "vehicle:\n", "vehicle: {}\n", "vehicle: ~\n"}) {
     INFO(yaml);
-    check_same(parse_scenario(yaml, "s.yaml").vehicle, def);
+    check_same_vehicle(parse_scenario(yaml, "s.yaml").vehicle, def);
   }
   // the default kind's keys without a kind key
   const auto v = parse_ok("trajectory: {length_m: 10, heading_deg: 90}\n");
@@ -259,7 +250,7 @@ nav:
     n.altitude_noise_sd_m = 0.12;
     n.noise_step_s = 0.02;
     n.drift_step_s = 0.5;
-    check_same(v, e);
+    check_same_vehicle(v, e);
     // the conversion of a few in plain numbers
     CHECK(v.trajectory.start_heading == Approx(0.584685299418).epsilon(1e-11));
     CHECK(v.trajectory.max_turn_rate_rad_s == Approx(0.218166156499).epsilon(1e-11));
@@ -294,7 +285,7 @@ trajectory:
     t.depth.min_depth_m = 2.5;
     t.depth.vertical_smoothing_m = 8;
     t.depth.profile_step_m = 1;
-    check_same(v, e);
+    check_same_vehicle(v, e);
   }
   SECTION("lawnmower") {
     const auto v = parse_ok(R"(
@@ -317,12 +308,12 @@ trajectory:
     m.line_spacing_m = 35;
     m.legs = 6;
     m.first_turn = TurnDirection::kPort;
-    check_same(v, e);
+    check_same_vehicle(v, e);
     // without a lawnmower map: the LawnmowerDesc defaults
     VehicleDesc plain;
     plain.trajectory.kind = TrajectoryKind::kLawnmower;
-    check_same(parse_ok("trajectory: {kind: lawnmower}\n"), plain);
-    check_same(parse_ok("trajectory: {kind: lawnmower, lawnmower: {}}\n"), plain);
+    check_same_vehicle(parse_ok("trajectory: {kind: lawnmower}\n"), plain);
+    check_same_vehicle(parse_ok("trajectory: {kind: lawnmower, lawnmower: {}}\n"), plain);
   }
   SECTION("the bounds themselves are accepted and convert to validate()'s bounds") {
     const auto v = parse_ok(R"(
@@ -407,34 +398,36 @@ TEST_CASE("vehicle_loader: keys of another kind or depth mode are rejected") {
     INFO(c.kind << " " << c.key);
     std::string yaml = "trajectory:\n  kind: " + c.kind + "\n  " + c.key + ": " + c.value + "\n";
     if (c.kind == "waypoints") yaml += "  waypoints_m: [[5, 5]]\n";
-    const auto i =
-        expect_error(yaml, "trajectory." + c.key,
-                     {"is a key of " + c.owners + ", but this trajectory is of kind " + c.kind,
-                      "(line 3", "allowed: the keys of kind " + c.kind + ": kind, "});
+    const auto i = expect_vehicle_error(
+        yaml, "trajectory." + c.key,
+        {"is a key of " + c.owners + ", but this trajectory is of kind " + c.kind, "(line 3",
+         "allowed: the keys of kind " + c.kind + ": kind, "});
     if (c.kind == "lawnmower" && (c.key == "start_m" || c.key == "heading_deg")) {
       CHECK(contains(i.problem, "a lawnmower starts at lawnmower.origin_m"));
     }
   }
   // the default kind says so
-  expect_error("trajectory: {waypoints_m: [[1, 2]]}\n", "trajectory.waypoints_m",
-               {"this trajectory is of kind straight (the default; set kind to choose another)",
-                "allowed: the keys of kind straight: kind, start_m, heading_deg, length_m, "
-                "speed_m_s, max_turn_rate_deg_s, depth, sway, attitude"});
+  expect_vehicle_error(
+      "trajectory: {waypoints_m: [[1, 2]]}\n", "trajectory.waypoints_m",
+      {"this trajectory is of kind straight (the default; set kind to choose another)",
+       "allowed: the keys of kind straight: kind, start_m, heading_deg, length_m, "
+       "speed_m_s, max_turn_rate_deg_s, depth, sway, attitude"});
   // depth modes
   for (const std::string key : {"altitude_m", "max_climb_rate_m_s", "look_ahead_m", "min_depth_m",
                                 "vertical_smoothing_m"}) {
     INFO(key);
-    expect_error("trajectory:\n  depth:\n    mode: depth\n    " + key + ": 1\n",
-                 "trajectory.depth." + key,
-                 {"is a key of mode altitude, but this depth is of mode depth (line 4",
-                  "allowed: the keys of mode depth: mode, depth_m, profile_step_m"});
-    expect_error("trajectory:\n  depth:\n    " + key + ": 1\n", "trajectory.depth." + key,
-                 {"of mode depth (the default; set mode to choose another)"});
+    expect_vehicle_error("trajectory:\n  depth:\n    mode: depth\n    " + key + ": 1\n",
+                         "trajectory.depth." + key,
+                         {"is a key of mode altitude, but this depth is of mode depth (line 4",
+                          "allowed: the keys of mode depth: mode, depth_m, profile_step_m"});
+    expect_vehicle_error("trajectory:\n  depth:\n    " + key + ": 1\n", "trajectory.depth." + key,
+                         {"of mode depth (the default; set mode to choose another)"});
   }
-  expect_error("trajectory:\n  depth: {mode: altitude, depth_m: 10}\n", "trajectory.depth.depth_m",
-               {"is a key of mode depth, but this depth is of mode altitude",
-                "allowed: the keys of mode altitude: mode, altitude_m, max_climb_rate_m_s, "
-                "look_ahead_m, min_depth_m, vertical_smoothing_m, profile_step_m"});
+  expect_vehicle_error("trajectory:\n  depth: {mode: altitude, depth_m: 10}\n",
+                       "trajectory.depth.depth_m",
+                       {"is a key of mode depth, but this depth is of mode altitude",
+                        "allowed: the keys of mode altitude: mode, altitude_m, max_climb_rate_m_s, "
+                        "look_ahead_m, min_depth_m, vertical_smoothing_m, profile_step_m"});
   // profile_step_m belongs to both modes
   CHECK(parse_ok("trajectory: {depth: {mode: altitude, profile_step_m: 2}}\n")
             .trajectory.depth.profile_step_m == 2);
@@ -443,33 +436,37 @@ TEST_CASE("vehicle_loader: keys of another kind or depth mode are rejected") {
 }
 
 TEST_CASE("vehicle_loader: unknown keys, at every level, with suggestions") {
-  auto i =
-      expect_error("trajectori: {}\n", "trajectori",
-                   {"unknown key 'trajectori' (line 1, column 1)", "allowed: trajectory, nav"});
+  auto i = expect_vehicle_error(
+      "trajectori: {}\n", "trajectori",
+      {"unknown key 'trajectori' (line 1, column 1)", "allowed: trajectory, nav"});
   CHECK(i.suggestion == "trajectory");
-  i = expect_error("trajectory:\n  knd: straight\n", "trajectory.knd",
-                   {"allowed: kind, start_m, heading_deg, length_m, waypoints_m, lawnmower, "
-                    "speed_m_s, max_turn_rate_deg_s, depth, sway, attitude"});
+  i = expect_vehicle_error(
+      "trajectory:\n  knd: straight\n", "trajectory.knd",
+      {"allowed: kind, start_m, heading_deg, length_m, waypoints_m, lawnmower, "
+       "speed_m_s, max_turn_rate_deg_s, depth, sway, attitude"});
   CHECK(i.suggestion == "kind");
-  i = expect_error("trajectory:\n  speed_kn: 4\n", "trajectory.speed_kn", {"unknown key"});
-  i = expect_error("trajectory:\n  kind: lawnmower\n  lawnmower: {leg_lenght_m: 5}\n",
-                   "trajectory.lawnmower.leg_lenght_m",
-                   {"allowed: origin_m, first_leg_heading_deg, leg_length_m, line_spacing_m, "
-                    "legs, first_turn"});
+  i = expect_vehicle_error("trajectory:\n  speed_kn: 4\n", "trajectory.speed_kn", {"unknown key"});
+  i = expect_vehicle_error(
+      "trajectory:\n  kind: lawnmower\n  lawnmower: {leg_lenght_m: 5}\n",
+      "trajectory.lawnmower.leg_lenght_m",
+      {"allowed: origin_m, first_leg_heading_deg, leg_length_m, line_spacing_m, "
+       "legs, first_turn"});
   CHECK(i.suggestion == "leg_length_m");
-  i = expect_error("trajectory: {depth: {altitude: 5}}\n", "trajectory.depth.altitude",
-                   {"allowed: mode, depth_m, altitude_m, max_climb_rate_m_s, look_ahead_m, "
-                    "min_depth_m, vertical_smoothing_m, profile_step_m"});
+  i = expect_vehicle_error("trajectory: {depth: {altitude: 5}}\n", "trajectory.depth.altitude",
+                           {"allowed: mode, depth_m, altitude_m, max_climb_rate_m_s, look_ahead_m, "
+                            "min_depth_m, vertical_smoothing_m, profile_step_m"});
   CHECK(i.suggestion == "altitude_m");
-  i = expect_error("trajectory: {sway: {amplitude: 1}}\n", "trajectory.sway.amplitude",
-                   {"allowed: amplitude_m, period_s, phase_deg, yaw_coupling"});
+  i = expect_vehicle_error("trajectory: {sway: {amplitude: 1}}\n", "trajectory.sway.amplitude",
+                           {"allowed: amplitude_m, period_s, phase_deg, yaw_coupling"});
   CHECK(i.suggestion == "amplitude_m");
-  i = expect_error("trajectory: {attitude: {max_roll: 10}}\n", "trajectory.attitude.max_roll",
-                   {"allowed: roll_gain, max_roll_deg, roll_time_constant_s, pitch_gain, "
-                    "max_pitch_deg"});
+  i = expect_vehicle_error("trajectory: {attitude: {max_roll: 10}}\n",
+                           "trajectory.attitude.max_roll",
+                           {"allowed: roll_gain, max_roll_deg, roll_time_constant_s, pitch_gain, "
+                            "max_pitch_deg"});
   CHECK(i.suggestion == "max_roll_deg");
-  i = expect_error("nav: {heading_noise_rad: 0.1}\n", "nav.heading_noise_rad",
-                   {"allowed: position_noise_m, position_drift_m_per_sqrt_s, heading_bias_deg"});
+  i = expect_vehicle_error(
+      "nav: {heading_noise_rad: 0.1}\n", "nav.heading_noise_rad",
+      {"allowed: position_noise_m, position_drift_m_per_sqrt_s, heading_bias_deg"});
   CHECK(i.suggestion == "heading_noise_deg");
   // unknown keys are reported before values are read, all of a map together
   try {
@@ -486,53 +483,59 @@ TEST_CASE("vehicle_loader: unknown keys, at every level, with suggestions") {
 }
 
 TEST_CASE("vehicle_loader: wrong types") {
-  expect_error("- 1\n", "", {"is not a map", "allowed: a map with trajectory, nav"});
-  expect_error("trajectory: 5\n", "trajectory", {"'5' is not a map", "allowed: a map with kind"});
-  expect_error("nav: [1]\n", "nav", {"is not a map"});
-  auto i = expect_error(
+  expect_vehicle_error("- 1\n", "", {"is not a map", "allowed: a map with trajectory, nav"});
+  expect_vehicle_error("trajectory: 5\n", "trajectory",
+                       {"'5' is not a map", "allowed: a map with kind"});
+  expect_vehicle_error("nav: [1]\n", "nav", {"is not a map"});
+  auto i = expect_vehicle_error(
       "trajectory: {kind: lawnmover}\n", "trajectory.kind",
       {"'lawnmover' is not a trajectory kind", "allowed: straight, waypoints, lawnmower"});
   CHECK(i.suggestion == "lawnmower");
-  expect_error("trajectory: {kind: [straight]}\n", "trajectory.kind",
-               {"is not a trajectory kind name"});
-  expect_error("trajectory: {kind: }\n", "trajectory.kind", {"has no value"});
-  i = expect_error("trajectory: {depth: {mode: altitud}}\n", "trajectory.depth.mode",
-                   {"'altitud' is not a depth mode", "allowed: altitude, depth"});
+  expect_vehicle_error("trajectory: {kind: [straight]}\n", "trajectory.kind",
+                       {"is not a trajectory kind name"});
+  expect_vehicle_error("trajectory: {kind: }\n", "trajectory.kind", {"has no value"});
+  i = expect_vehicle_error("trajectory: {depth: {mode: altitud}}\n", "trajectory.depth.mode",
+                           {"'altitud' is not a depth mode", "allowed: altitude, depth"});
   CHECK(i.suggestion == "altitude");
-  expect_error("trajectory: {depth: 5}\n", "trajectory.depth", {"is not a map"});
-  expect_error("trajectory: {kind: lawnmower, lawnmower: {first_turn: right}}\n",
-               "trajectory.lawnmower.first_turn",
-               {"'right' is not a turn direction", "allowed: starboard, port"});
-  expect_error("trajectory: {kind: lawnmower, lawnmower: {legs: 2.5}}\n",
-               "trajectory.lawnmower.legs", {"'2.5' is not an integer", "an integer 1 .. 10000"});
-  expect_error("trajectory: {kind: lawnmower, lawnmower: [1]}\n", "trajectory.lawnmower",
-               {"is not a map"});
-  expect_error("trajectory: {start_m: 5}\n", "trajectory.start_m",
-               {"is a single value, not a list", "a list [north, east] of 2 finite numbers"});
-  expect_error("trajectory: {start_m: [1, 2, 3]}\n", "trajectory.start_m", {"has 3 values"});
-  expect_error("trajectory: {start_m: [a, 2]}\n", "trajectory.start_m[0]", {"'a' is not a number"});
-  expect_error("trajectory: {speed_m_s: '2'}\n", "trajectory.speed_m_s",
-               {"is a quoted string, not a number"});
-  expect_error("trajectory: {speed_m_s: .nan}\n", "trajectory.speed_m_s",
-               {"is not a finite number"});
-  expect_error("trajectory: {heading_deg: .inf}\n", "trajectory.heading_deg",
-               {"is not a finite number", "allowed: any finite number"});
-  expect_error("nav: {position_noise_m: }\n", "nav.position_noise_m", {"has no value"});
-  expect_error("nav: {position_noise_m: true}\n", "nav.position_noise_m", {"is not a number"});
+  expect_vehicle_error("trajectory: {depth: 5}\n", "trajectory.depth", {"is not a map"});
+  expect_vehicle_error("trajectory: {kind: lawnmower, lawnmower: {first_turn: right}}\n",
+                       "trajectory.lawnmower.first_turn",
+                       {"'right' is not a turn direction", "allowed: starboard, port"});
+  expect_vehicle_error("trajectory: {kind: lawnmower, lawnmower: {legs: 2.5}}\n",
+                       "trajectory.lawnmower.legs",
+                       {"'2.5' is not an integer", "an integer 1 .. 10000"});
+  expect_vehicle_error("trajectory: {kind: lawnmower, lawnmower: [1]}\n", "trajectory.lawnmower",
+                       {"is not a map"});
+  expect_vehicle_error(
+      "trajectory: {start_m: 5}\n", "trajectory.start_m",
+      {"is a single value, not a list", "a list [north, east] of 2 finite numbers"});
+  expect_vehicle_error("trajectory: {start_m: [1, 2, 3]}\n", "trajectory.start_m",
+                       {"has 3 values"});
+  expect_vehicle_error("trajectory: {start_m: [a, 2]}\n", "trajectory.start_m[0]",
+                       {"'a' is not a number"});
+  expect_vehicle_error("trajectory: {speed_m_s: '2'}\n", "trajectory.speed_m_s",
+                       {"is a quoted string, not a number"});
+  expect_vehicle_error("trajectory: {speed_m_s: .nan}\n", "trajectory.speed_m_s",
+                       {"is not a finite number"});
+  expect_vehicle_error("trajectory: {heading_deg: .inf}\n", "trajectory.heading_deg",
+                       {"is not a finite number", "allowed: any finite number"});
+  expect_vehicle_error("nav: {position_noise_m: }\n", "nav.position_noise_m", {"has no value"});
+  expect_vehicle_error("nav: {position_noise_m: true}\n", "nav.position_noise_m",
+                       {"is not a number"});
   // waypoints
   const std::string w = "trajectory:\n  kind: waypoints\n";
-  expect_error(w, "trajectory.waypoints_m",
-               {"is not set (kind waypoints needs at least one waypoint)",
-                "allowed: a list of at least one [north, east] point"});
-  expect_error(w + "  waypoints_m: []\n", "trajectory.waypoints_m", {"has no waypoints"});
-  expect_error(w + "  waypoints_m:\n", "trajectory.waypoints_m", {"has no waypoints"});
-  expect_error(w + "  waypoints_m: 5\n", "trajectory.waypoints_m", {"is not a list"});
-  expect_error(w + "  waypoints_m: [1, 2]\n", "trajectory.waypoints_m[0]",
-               {"is a single value, not a list"});
-  expect_error(w + "  waypoints_m: [[1, 2], [3]]\n", "trajectory.waypoints_m[1]",
-               {"has 1 value, not 2"});
-  expect_error(w + "  waypoints_m: [[1, 2], [3, .nan]]\n", "trajectory.waypoints_m[1][1]",
-               {"is not a finite number"});
+  expect_vehicle_error(w, "trajectory.waypoints_m",
+                       {"is not set (kind waypoints needs at least one waypoint)",
+                        "allowed: a list of at least one [north, east] point"});
+  expect_vehicle_error(w + "  waypoints_m: []\n", "trajectory.waypoints_m", {"has no waypoints"});
+  expect_vehicle_error(w + "  waypoints_m:\n", "trajectory.waypoints_m", {"has no waypoints"});
+  expect_vehicle_error(w + "  waypoints_m: 5\n", "trajectory.waypoints_m", {"is not a list"});
+  expect_vehicle_error(w + "  waypoints_m: [1, 2]\n", "trajectory.waypoints_m[0]",
+                       {"is a single value, not a list"});
+  expect_vehicle_error(w + "  waypoints_m: [[1, 2], [3]]\n", "trajectory.waypoints_m[1]",
+                       {"has 1 value, not 2"});
+  expect_vehicle_error(w + "  waypoints_m: [[1, 2], [3, .nan]]\n", "trajectory.waypoints_m[1][1]",
+                       {"is not a finite number"});
 }
 
 TEST_CASE("vehicle_loader: out-of-range values name the file, key, value and range") {
@@ -617,7 +620,8 @@ TEST_CASE("vehicle_loader: out-of-range values name the file, key, value and ran
   };
   for (const auto& c : cases) {
     INFO(c.path);
-    expect_error(c.yaml, c.path, {c.value + " is out of range (line ", "allowed: " + c.allowed});
+    expect_vehicle_error(c.yaml, c.path,
+                         {c.value + " is out of range (line ", "allowed: " + c.allowed});
   }
   // every number key is covered above (or has no bounds)
   std::vector<std::string> covered;
@@ -652,15 +656,15 @@ TEST_CASE("vehicle_loader: validate()'s limits are reported at the YAML key, in 
     CHECK(e.first().line == 3);
   }
   // a value that is not a number is told the same range
-  expect_error("trajectory: {attitude: {max_pitch_deg: steep}}\n",
-               "trajectory.attitude.max_pitch_deg",
-               {"'steep' is not a number", "allowed: a number > 0 and < 90"});
-  expect_error("nav: {heading_bias_deg: [1]}\n", "nav.heading_bias_deg",
-               {"allowed: a number -180 .. 180"});
+  expect_vehicle_error("trajectory: {attitude: {max_pitch_deg: steep}}\n",
+                       "trajectory.attitude.max_pitch_deg",
+                       {"'steep' is not a number", "allowed: a number > 0 and < 90"});
+  expect_vehicle_error("nav: {heading_bias_deg: [1]}\n", "nav.heading_bias_deg",
+                       {"allowed: a number -180 .. 180"});
   // a bound with no short decimal in degrees is also given in SI
-  expect_error("trajectory: {max_turn_rate_deg_s: 120}\n", "trajectory.max_turn_rate_deg_s",
-               {"120 is out of range (line 1, column 35)",
-                "allowed: > 0 and <= 114.59155902616465 (2 rad/s)"});
+  expect_vehicle_error("trajectory: {max_turn_rate_deg_s: 120}\n", "trajectory.max_turn_rate_deg_s",
+                       {"120 is out of range (line 1, column 35)",
+                        "allowed: > 0 and <= 114.59155902616465 (2 rad/s)"});
   // every violation, one issue each, in validate()'s order, each at its own line
   try {
     parse_vehicle(
@@ -682,14 +686,15 @@ TEST_CASE("vehicle_loader: validate()'s limits are reported at the YAML key, in 
 
 TEST_CASE("vehicle_loader: validate()'s cross-field rules become errors at the YAML key") {
   const std::string w = "trajectory:\n  kind: waypoints\n  start_m: [0, 0]\n  waypoints_m: ";
-  auto i = expect_error(w + "[[0, 0.005]]\n", "trajectory.waypoints_m[0]",
-                        {"a list [0, 0.005] is rejected by the vehicle model: "
-                         "trajectory.waypoints[0]: (0, 0.005) is 0.005 m from the start point",
-                         "allowed: [north, east]; consecutive points (start_m included) at "
-                         "least 0.01 m apart"});
+  auto i =
+      expect_vehicle_error(w + "[[0, 0.005]]\n", "trajectory.waypoints_m[0]",
+                           {"a list [0, 0.005] is rejected by the vehicle model: "
+                            "trajectory.waypoints[0]: (0, 0.005) is 0.005 m from the start point",
+                            "allowed: [north, east]; consecutive points (start_m included) at "
+                            "least 0.01 m apart"});
   CHECK(i.line == 4);
-  expect_error(w + "[[10, 0], [20, 0], [20, 0]]\n", "trajectory.waypoints_m[2]",
-               {"from the previous waypoint"});
+  expect_vehicle_error(w + "[[10, 0], [20, 0], [20, 0]]\n", "trajectory.waypoints_m[2]",
+                       {"from the previous waypoint"});
   // every violation, one issue each
   try {
     parse_vehicle(w + "[[0, 0], [0, 0.001], [5, 5]]\n", "v.yaml");
@@ -707,20 +712,22 @@ TEST_CASE("vehicle_loader: the planned path's length and duration limits") {
   // 10000 legs of 5000 m: 5e7 m, 1e8 profile steps of 0.5 m
   const std::string big =
       "trajectory:\n  kind: lawnmower\n  lawnmower: {legs: 10000, leg_length_m: 5000}\n";
-  expect_error(big, "trajectory.depth.profile_step_m",
-               {"the default 0.5 gives 1.01456e+08 profile steps over the planned path of "
-                "5.07282e+07 m",
-                "allowed: >= 2.53641 for this path (at most 2e+07 profile steps), or a shorter "
-                "path"});
+  expect_vehicle_error(
+      big, "trajectory.depth.profile_step_m",
+      {"the default 0.5 gives 1.01456e+08 profile steps over the planned path of "
+       "5.07282e+07 m",
+       "allowed: >= 2.53641 for this path (at most 2e+07 profile steps), or a shorter "
+       "path"});
   // with a coarser step it is accepted
   CHECK(parse_ok(big + "  depth: {profile_step_m: 3}\n").trajectory.lawnmower.legs == 10000);
   // a mission longer than 1e9 s
-  expect_error("trajectory: {length_m: 2000, speed_m_s: 1e-6}\n", "trajectory.speed_m_s",
-               {"1e-06 gives a mission of 2e+09 s over the planned path of 2000 m",
-                "allowed: >= 2e-06 for this path (missions of at most 1e+09 s)"});
+  expect_vehicle_error("trajectory: {length_m: 2000, speed_m_s: 1e-6}\n", "trajectory.speed_m_s",
+                       {"1e-06 gives a mission of 2e+09 s over the planned path of 2000 m",
+                        "allowed: >= 2e-06 for this path (missions of at most 1e+09 s)"});
   // a path of no finite length
-  expect_error("trajectory: {kind: lawnmower, lawnmower: {leg_length_m: 1e308, legs: 10}}\n",
-               "trajectory", {"the planned path has no finite length"});
+  expect_vehicle_error(
+      "trajectory: {kind: lawnmower, lawnmower: {leg_length_m: 1e308, legs: 10}}\n", "trajectory",
+      {"the planned path has no finite length"});
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -896,7 +903,7 @@ TEST_CASE("vehicle_loader: the shipped scenarios' vehicles") {
       CHECK(m.leg_length_m == 80);
       CHECK(m.line_spacing_m == 20);
       CHECK(v.trajectory.max_turn_rate_rad_s == rad(15));
-      check_same(v, load_scenario(dir + "seabed_flat.yaml").vehicle);
+      check_same_vehicle(v, load_scenario(dir + "seabed_flat.yaml").vehicle);
     }
     // flown over the real seabed: inside the extent all the way, at the commanded altitude
     const scene::Scene sc(s.scene);
@@ -943,11 +950,11 @@ std::string uncomment(const std::string& text, const std::string& first, const s
 TEST_CASE("vehicle_loader: config/reference.yaml gives exactly the documented defaults") {
   const std::string path = SONARLOOP_SOURCE_DIR "/config/reference.yaml";
   const auto ref = load_scenario(path);
-  check_same(ref.vehicle, VehicleDesc{});
+  check_same_vehicle(ref.vehicle, VehicleDesc{});
 
   // every key of every map is documented in the vehicle section, live or commented out (the keys
   // of the other kinds and mode), each with a comment
-  const std::string text = read_file(path);
+  const std::string text = slurp(path);
   const auto section = text.find("\nvehicle:\n");
   REQUIRE(section != std::string::npos);
   const std::string vehicle_text = text.substr(section);
@@ -985,14 +992,14 @@ TEST_CASE("vehicle_loader: config/reference.yaml gives exactly the documented de
   expect_lm.trajectory.kind = TrajectoryKind::kLawnmower;
   const auto lm = parse_ok("trajectory:\n    kind: lawnmower\n" +
                            uncomment(text, "    # lawnmower:", "    #   first_turn:", 4));
-  check_same(lm, expect_lm);
+  check_same_vehicle(lm, expect_lm);
   // and the commented-out altitude keys the DepthDesc defaults
   const auto alt =
       parse_ok("trajectory:\n    depth:\n      mode: altitude\n" +
                uncomment(text, "      # altitude_m:", "      # vertical_smoothing_m:", 6));
   VehicleDesc expect_alt;
   expect_alt.trajectory.depth.mode = DepthMode::kAltitude;
-  check_same(alt, expect_alt);
+  check_same_vehicle(alt, expect_alt);
   // the waypoints example parses
   const auto wp = parse_ok("trajectory:\n    kind: waypoints\n" +
                            uncomment(text, "    # waypoints_m:", "    # waypoints_m:", 4));
@@ -1031,7 +1038,7 @@ TEST_CASE("vehicle_loader: load_vehicle reads a file and names it in errors") {
               0) == 0);
   }
   // malformed YAML
-  expect_error("trajectory: {kind: straight\n", "", {"YAML syntax error"});
+  expect_vehicle_error("trajectory: {kind: straight\n", "", {"YAML syntax error"});
 }
 
 TEST_CASE("vehicle_loader: format_vehicle_yaml writes the keys of the kind and round-trips") {
@@ -1052,9 +1059,10 @@ TEST_CASE("vehicle_loader: format_vehicle_yaml writes the keys of the kind and r
   CHECK_FALSE(contains(yaml, "length_m"));
   CHECK_FALSE(contains(yaml, "lawnmower"));
   CHECK_FALSE(contains(yaml, "altitude_m"));
-  check_same(parse_vehicle_node(parse_document("vehicle:\n" + yaml, "f.yaml").child("vehicle")), d);
+  check_same_vehicle(
+      parse_vehicle_node(parse_document("vehicle:\n" + yaml, "f.yaml").child("vehicle")), d);
   // the defaults, and each kind and mode
-  check_same(parse_ok(format_vehicle_yaml(VehicleDesc{})), VehicleDesc{});
+  check_same_vehicle(parse_ok(format_vehicle_yaml(VehicleDesc{})), VehicleDesc{});
   VehicleDesc l;
   l.trajectory.kind = TrajectoryKind::kLawnmower;
   l.trajectory.lawnmower.first_turn = TurnDirection::kPort;
@@ -1067,7 +1075,7 @@ TEST_CASE("vehicle_loader: format_vehicle_yaml writes the keys of the kind and r
   CHECK(contains(lyaml, "\n    mode: altitude\n    altitude_m: 7.5\n"));
   CHECK_FALSE(contains(lyaml, "\n    depth_m:"));
   CHECK_FALSE(contains(lyaml, "start_m"));
-  check_same(parse_ok(lyaml), l);
+  check_same_vehicle(parse_ok(lyaml), l);
   // the defaults in degrees are the shortest exact texts (as in config/reference.yaml)
   const std::string def = format_vehicle_yaml(VehicleDesc{});
   CHECK(contains(def, "max_turn_rate_deg_s: 5.729577951308232\n"));
@@ -1088,32 +1096,31 @@ struct Node {
   bool map = false;
 };
 
-std::string render(const std::vector<Node>& nodes, bool flow, int indent) {
+std::string render_nodes(const std::vector<Node>& nodes, bool flow, int indent) {
   std::string out;
   if (flow) {
     out = "{";
     for (std::size_t i = 0; i < nodes.size(); ++i) {
       out += (i ? ", " : "") + nodes[i].key + ": " +
-             (nodes[i].map ? render(nodes[i].children, true, 0) : nodes[i].text);
+             (nodes[i].map ? render_nodes(nodes[i].children, true, 0) : nodes[i].text);
     }
     return out + "}";
   }
   const std::string pad(static_cast<std::size_t>(indent), ' ');
   for (const auto& n : nodes) {
     if (n.map) {
-      out += pad + n.key + ":" +
-             (n.children.empty() ? " {}\n" : "\n" + render(n.children, false, indent + 2));
+      out += pad + n.key + ":";
+      if (n.children.empty()) {
+        out += " {}\n";
+      } else {
+        out += "\n";
+        out += render_nodes(n.children, false, indent + 2);
+      }
     } else {
       out += pad + n.key + ": " + n.text + "\n";
     }
   }
   return out;
-}
-
-std::string real_text(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
 }
 
 // How a leaf's value is read, for corrupting it.
@@ -1252,7 +1259,7 @@ class VehicleGenerator {
     east = rng_.uniform(-range, range);
     const std::string e = real_text(east);
     east = std::stod(e);
-    return "[" + real_text(north) + ", " + e + "]";
+    return std::string("[").append(real_text(north)).append(", ").append(e).append("]");
   }
 
   void build(std::vector<Node>& root, VehicleDesc& d) {
@@ -1434,7 +1441,7 @@ std::vector<Node>& map_at(std::vector<Node>& root, const std::vector<std::string
 VehicleDesc parse_either(const std::vector<Node>& root, bool nested, bool flow,
                          const std::string& file) {
   const std::string body =
-      flow ? render(root, true, 0) + "\n" : render(root, false, nested ? 2 : 0);
+      flow ? render_nodes(root, true, 0) + "\n" : render_nodes(root, false, nested ? 2 : 0);
   if (!nested) return parse_vehicle(body, file);
   const std::string text = "other: 1\nvehicle:" + (flow ? " " + body : "\n" + body);
   return parse_vehicle_node(parse_document(text, file).child("vehicle"));
@@ -1459,19 +1466,19 @@ TEST_CASE("vehicle_loader: random valid vehicles round-trip, corruptions are rej
     const bool flow = rng.uniform() < 0.3;
     const std::string file = "random-" + std::to_string(sample) + ".yaml";
     INFO("sample " << sample << " (nested " << nested << ", flow " << flow << "):\n"
-                   << render(root, false, 0));
+                   << render_nodes(root, false, 0));
     VehicleDesc got;
     try {
       got = parse_either(root, nested, flow, file);
     } catch (const ConfigError& e) {
       FAIL("valid vehicle rejected: " << e.what());
     }
-    check_same(got, expect);
+    check_same_vehicle(got, expect);
     ++kinds[static_cast<int>(got.trajectory.kind)];
     // written out and read back, bit for bit
     const std::string written = format_vehicle_yaml(got);
     INFO("written:\n" << written);
-    check_same(parse_vehicle(written, "written.yaml"), got);
+    check_same_vehicle(parse_vehicle(written, "written.yaml"), got);
     // the planner and the nav model accept every vehicle the loader accepts
     try {
       const bool alt = got.trajectory.depth.mode == DepthMode::kAltitude;
@@ -1575,7 +1582,7 @@ TEST_CASE("vehicle_loader: random valid vehicles round-trip, corruptions are rej
         expect_path += o.second;
         what = "set " + leaf.path + " to '" + n.text + "'";
       }
-      INFO("corruption: " << what << "\n" << render(bad, false, 0));
+      INFO("corruption: " << what << "\n" << render_nodes(bad, false, 0));
       ++corruptions;
       try {
         parse_either(bad, nested, flow, file);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/rng.h"
+#include "tests/config/config_error_checks.h"
 #include "tests/support/temp_dir.h"
 
 using sonarloop::Rng;
@@ -19,6 +20,7 @@ using sonarloop::RngStream;
 using sonarloop::Vec2;
 using sonarloop::Vec3;
 using namespace sonarloop::config;
+using sonarloop::testing::contains;
 
 namespace {
 
@@ -43,10 +45,6 @@ ConfigIssue error_of(Fn&& fn) {
   }
   FAIL("no ConfigError was thrown");
   return {};
-}
-
-bool contains(const std::string& s, const std::string& part) {
-  return s.find(part) != std::string::npos;
 }
 
 const NameTable<int>& colour_table() {

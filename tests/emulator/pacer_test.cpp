@@ -16,7 +16,7 @@ using sonarloop::testing::SimulatedClock;
 namespace {
 
 // The simulated clock's time at the start of each test: any time well away from 0 will do.
-constexpr std::int64_t kClockStartNs = 5'000'000'000;
+constexpr std::int64_t kPacerClockStartNs = 5'000'000'000;
 
 }  // namespace
 
@@ -45,7 +45,7 @@ TEST_CASE("next_deadline: after an overrun it resyncs to the first grid point at
 TEST_CASE("next_deadline never accumulates drift: 100000 events with random lateness") {
   // a loop that handles each event up to 0.9 period late: every deadline is exactly k·period
   const SimTime period = 66'666'667;  // not a divisor of anything round
-  SimulatedClock clock(kClockStartNs);
+  SimulatedClock clock(kPacerClockStartNs);
   const std::int64_t start = clock.now_ns();
   sonarloop::Rng rng(42);
   SimTime deadline = 0;
@@ -64,7 +64,7 @@ TEST_CASE("next_deadline never accumulates drift: 100000 events with random late
 
 TEST_CASE("next_deadline resyncs after overruns and then runs on time again, on the same grid") {
   const SimTime period = 10'000'000;
-  SimulatedClock clock(kClockStartNs);
+  SimulatedClock clock(kPacerClockStartNs);
   const std::int64_t start = clock.now_ns();
   SimTime deadline = 0;
   std::int64_t skipped = 0, handled = 0;
@@ -93,7 +93,7 @@ TEST_CASE("ping_window: wait, send, drop") {
 }
 
 TEST_CASE("Pacer maps simulation time to wall time with absolute deadlines") {
-  SimulatedClock clock(kClockStartNs);
+  SimulatedClock clock(kPacerClockStartNs);
   Pacer realtime(clock, parse_rate("realtime"));
   realtime.start();
   const std::int64_t w0 = clock.now_ns();

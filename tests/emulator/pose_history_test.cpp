@@ -6,11 +6,12 @@
 #include <numbers>
 
 #include "emulator/pose_history.h"
+#include "tests/emulator/time_units.h"
 
 using namespace sonarloop::emulator;
+using sonarloop::testing::kMs;
 
 namespace {
-constexpr std::int64_t kMs = 1'000'000;
 constexpr std::int64_t kNoLimit = 1'000'000 * kMs;
 }  // namespace
 

@@ -19,11 +19,13 @@
 #include "drivers/net/udp_receiver.h"
 #include "drivers/net/udp_sender.h"
 #include "drivers/xtf/xtf_file.h"
+#include "tests/emulator/time_units.h"
 #include "tests/support/simulated_clock.h"
 #include "tests/support/temp_dir.h"
 
 using namespace sonarloop;
 using namespace sonarloop::emulator;
+using sonarloop::testing::kMs;
 using sonarloop::testing::SimulatedClock;
 using sonarloop::testing::TempDir;
 
@@ -32,13 +34,12 @@ namespace {
 const std::string kRealXtf =
     std::string(SONARLOOP_SOURCE_DIR) + "/tests/data/xtf/scotsman-iver2.xtf";
 constexpr std::size_t kRealPings = 461;
-constexpr std::int64_t kMs = 1'000'000;
 
 // Every send of a replay on the simulated clock happens exactly at its deadline, so the deadlines
 // themselves can be checked (no wall clock involved). Started well away from 0.
 constexpr std::int64_t kClockStartNs = 1'000'000'000'000;
 
-std::vector<std::uint8_t> slurp(const std::string& path) {
+std::vector<std::uint8_t> read_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
@@ -269,7 +270,7 @@ TEST_CASE("replay xtf: the real recording at --rate max over UDP on 127.0.0.1 ar
   CHECK(s.passes_completed == 1);
   CHECK(s.dropped == 0);
   CHECK(s.file_headers_sent >= 2);
-  CHECK(s.bytes_sent == s.file_headers_sent * 1024 + (slurp(kRealXtf).size() - 1024));
+  CHECK(s.bytes_sent == s.file_headers_sent * 1024 + (read_bytes(kRealXtf).size() - 1024));
   REQUIRE(!got.empty());
   CHECK(got.front() == raw.file_header);  // the file header datagram comes first
   std::vector<std::uint8_t> rebuilt = raw.file_header;
@@ -290,7 +291,7 @@ TEST_CASE("replay xtf: the real recording at --rate max over UDP on 127.0.0.1 ar
   CHECK(k == kRealPings);
   CHECK(headers == s.file_headers_sent);
   // file header + the ping datagrams == the file
-  CHECK(rebuilt == slurp(kRealXtf));
+  CHECK(rebuilt == read_bytes(kRealXtf));
 }
 
 TEST_CASE("replay xtf: sends happen at the pings' recorded times / rate (simulated clock)") {
@@ -364,7 +365,7 @@ TEST_CASE("replay xtf: a stop request ends the replay after the current packet")
 TEST_CASE("replay xtf: a ping with a corrupt year is paced by the ping period, with a warning") {
   // issue 11: `replay --rate 10` of such a file waited ~197 years after the last good packet
   TempDir dir("replay-corrupt-year");
-  std::vector<std::uint8_t> bytes = slurp(kRealXtf);
+  std::vector<std::uint8_t> bytes = read_bytes(kRealXtf);
   const XtfTimeline good = read_xtf_timeline(kRealXtf);
   std::uint64_t corrupt_offset = 0;
   std::size_t ping = 0;
@@ -436,7 +437,7 @@ TEST_CASE("replay xtf: refused datagrams (nobody listening) are counted, not fat
 
 TEST_CASE("replay xtf: truncated, corrupt and missing files are errors before anything is sent") {
   TempDir dir("replay-xtf-bad");
-  const std::vector<std::uint8_t> file = slurp(kRealXtf);
+  const std::vector<std::uint8_t> file = read_bytes(kRealXtf);
   int sent = 0;
   const DatagramSink count = [&](std::span<const std::uint8_t>) { return ++sent > 0; };
   SimulatedClock clock(kClockStartNs);

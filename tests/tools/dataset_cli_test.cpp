@@ -18,27 +18,16 @@
 
 #include "drivers/image/png.h"
 #include "tests/support/temp_dir.h"
+#include "tests/tools/sonarloop_cli.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
-
+using sonarloop::testing::file_tree;
+using sonarloop::testing::kBinary;
+using sonarloop::testing::run_quiet;
 using sonarloop::testing::slurp;
-
-int run(const std::string& args) {
-  return sonarloop::testing::run_command(kBinary + " " + args + " > /dev/null 2>&1");
-}
-
-// Every regular file below `root`, relative to it, with its bytes.
-std::map<std::string, std::string> tree(const fs::path& root) {
-  std::map<std::string, std::string> out;
-  for (const auto& e : fs::recursive_directory_iterator(root)) {
-    if (e.is_regular_file()) out[fs::relative(e.path(), root).generic_string()] = slurp(e.path());
-  }
-  return out;
-}
 
 // Checks a dataset root with Python's csv module: labels.csv parses; every row names an
 // existing PNG in its class folder, of the stated size, with its label image; every chip PNG has
@@ -109,10 +98,10 @@ std::size_t line_count(const fs::path& path) {
 TEST_CASE("dataset cli: a tiny set, byte-identical on 1 or 2 threads, read back by Python") {
   sonarloop::testing::TempDir dir("dataset-cli");
   const std::string common = " --count 3 --resolution-cm 20 --seed 11";
-  REQUIRE(run("dataset --out " + dir.file("a") + common + " --threads 1") == 0);
-  REQUIRE(run("dataset --out " + dir.file("b") + common + " --threads 2") == 0);
-  const auto a = tree(dir.path() / "a");
-  const auto b = tree(dir.path() / "b");
+  REQUIRE(run_quiet("dataset --out " + dir.file("a") + common + " --threads 1") == 0);
+  REQUIRE(run_quiet("dataset --out " + dir.file("b") + common + " --threads 2") == 0);
+  const auto a = file_tree(dir.path() / "a");
+  const auto b = file_tree(dir.path() / "b");
   REQUIRE(a.size() == 4 * 3 * 2 + 2);  // 12 chips, their label images, labels.csv, dataset.json
   CHECK(a == b);
   CHECK(a.count("manta/000000.png") == 1);
@@ -124,20 +113,22 @@ TEST_CASE("dataset cli: a tiny set, byte-identical on 1 or 2 threads, read back 
   CHECK(png.height == 15);
   CHECK(check_dataset(dir, dir.path() / "a", 12, 15, 15, "manta,rockan,cuboid,cylinder") == 0);
   // another seed: other chips; the same seed with more chips: the same first ones
-  REQUIRE(run("dataset --out " + dir.file("c") + " --count 3 --resolution-cm 20 --seed 12") == 0);
+  REQUIRE(run_quiet("dataset --out " + dir.file("c") + " --count 3 --resolution-cm 20 --seed 12") ==
+          0);
   CHECK(slurp(dir.path() / "c/manta/000004.png") != a.at("manta/000004.png"));
-  REQUIRE(run("dataset --out " + dir.file("d") + " --count 4 --resolution-cm 20 --seed 11") == 0);
+  REQUIRE(run_quiet("dataset --out " + dir.file("d") + " --count 4 --resolution-cm 20 --seed 11") ==
+          0);
   CHECK(slurp(dir.path() / "d/manta/000004.png") == a.at("manta/000004.png"));
   CHECK(slurp(dir.path() / "d/cuboid/000010.png") == a.at("cuboid/000010.png"));
   // the classifier's trainer reads the folder as it is
-  CHECK(run("train " + dir.file("d") + " --out " + dir.file("model.slpca")) == 0);
+  CHECK(run_quiet("train " + dir.file("d") + " --out " + dir.file("model.slpca")) == 0);
 }
 
 TEST_CASE("dataset cli: several resolutions, shadow chips, all classes") {
   sonarloop::testing::TempDir dir("dataset-cli-res");
-  REQUIRE(run("dataset --out " + dir.file("s") +
-              " --count 2 --resolution-cm 30 --resolution-cm 50 --kind shadow --classes all "
-              "--seabed flat,clutter --threads 2") == 0);
+  REQUIRE(run_quiet("dataset --out " + dir.file("s") +
+                    " --count 2 --resolution-cm 30 --resolution-cm 50 --kind shadow --classes all "
+                    "--seabed flat,clutter --threads 2") == 0);
   const std::string all =
       "manta,rockan,cylinder,standing_cylinder,cuboid,large_cuboid,hemisphere,small_hemisphere,"
       "box";
@@ -189,24 +180,24 @@ TEST_CASE("dataset cli: Ctrl-C leaves a consistent folder") {
   CHECK(line_count(out / "labels.csv") >= 6);
   // every PNG has its row and every row its PNG, no partial files
   CHECK(check_dataset(dir, out, -1, 10, 10, "manta,rockan,cuboid,cylinder") == 0);
-  CHECK(run("train " + out.string() + " --out " + dir.file("m.slpca")) == 0);
+  CHECK(run_quiet("train " + out.string() + " --out " + dir.file("m.slpca")) == 0);
 }
 
 TEST_CASE("dataset cli: bad options are usage errors; an existing dataset is never overwritten") {
   sonarloop::testing::TempDir dir("dataset-cli-bad");
   const std::string out = " --out " + dir.file("x");
-  CHECK(run("dataset") == 2);
-  CHECK(run("dataset" + out + " --resolution-cm 0") == 2);
-  CHECK(run("dataset" + out + " --resolution-cm 5 --resolution-cm 5") == 2);
-  CHECK(run("dataset" + out + " --kind sideways") == 2);
-  CHECK(run("dataset" + out + " --classes manta,submarine") == 2);
-  CHECK(run("dataset" + out + " --classes manta,manta") == 2);
-  CHECK(run("dataset" + out + " --seabed flat,moon") == 2);
-  CHECK(run("dataset" + out + " --count 0") == 2);
-  CHECK(run("dataset" + out + " --levels-db 0,-60") == 2);
-  CHECK(run("dataset" + out + " --seabed " + dir.file("missing.yaml")) == 1);
-  CHECK(run("dataset" + out + " --sonar nosuchsonar") == 1);
+  CHECK(run_quiet("dataset") == 2);
+  CHECK(run_quiet("dataset" + out + " --resolution-cm 0") == 2);
+  CHECK(run_quiet("dataset" + out + " --resolution-cm 5 --resolution-cm 5") == 2);
+  CHECK(run_quiet("dataset" + out + " --kind sideways") == 2);
+  CHECK(run_quiet("dataset" + out + " --classes manta,submarine") == 2);
+  CHECK(run_quiet("dataset" + out + " --classes manta,manta") == 2);
+  CHECK(run_quiet("dataset" + out + " --seabed flat,moon") == 2);
+  CHECK(run_quiet("dataset" + out + " --count 0") == 2);
+  CHECK(run_quiet("dataset" + out + " --levels-db 0,-60") == 2);
+  CHECK(run_quiet("dataset" + out + " --seabed " + dir.file("missing.yaml")) == 1);
+  CHECK(run_quiet("dataset" + out + " --sonar nosuchsonar") == 1);
   CHECK_FALSE(fs::exists(dir.path() / "x" / "labels.csv"));
-  REQUIRE(run("dataset" + out + " --count 1 --resolution-cm 50") == 0);
-  CHECK(run("dataset" + out + " --count 1 --resolution-cm 50") == 1);
+  REQUIRE(run_quiet("dataset" + out + " --count 1 --resolution-cm 50") == 0);
+  CHECK(run_quiet("dataset" + out + " --count 1 --resolution-cm 50") == 1);
 }

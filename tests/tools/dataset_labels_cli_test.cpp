@@ -12,21 +12,18 @@
 
 #include "drivers/image/png.h"
 #include "tests/support/temp_dir.h"
+#include "tests/tools/sonarloop_cli.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
-
+using sonarloop::testing::kBinary;
+using sonarloop::testing::run_quiet;
 using sonarloop::testing::slurp;
 
-int run(const std::string& args) {
-  return sonarloop::testing::run_command(kBinary + " " + args + " > /dev/null 2>&1");
-}
-
 // labels.csv as rows of column name -> value (the dataset writes no quoted fields).
-std::vector<std::map<std::string, std::string>> read_csv(const fs::path& path) {
+std::vector<std::map<std::string, std::string>> read_labels_csv(const fs::path& path) {
   std::istringstream in(slurp(path.string()));
   std::string line;
   std::vector<std::string> header;
@@ -88,8 +85,9 @@ ChipStats chip_stats(const fs::path& chip, const fs::path& label, double target_
 TEST_CASE("dataset cli: every chip has a label image with the target where labels.csv puts it") {
   sonarloop::testing::TempDir dir("dataset-labels");
   const double res_m = 0.1;
-  REQUIRE(run("dataset --out " + dir.file("h") + " --count 3 --resolution-cm 10 --seed 4") == 0);
-  const auto rows = read_csv(dir.path() / "h/labels.csv");
+  REQUIRE(run_quiet("dataset --out " + dir.file("h") + " --count 3 --resolution-cm 10 --seed 4") ==
+          0);
+  const auto rows = read_labels_csv(dir.path() / "h/labels.csv");
   REQUIRE(rows.size() == 12);
   int bright = 0;
   for (const auto& r : rows) {
@@ -109,7 +107,8 @@ TEST_CASE("dataset cli: every chip has a label image with the target where label
   // the highlight is brighter than the seabed around it (speckle aside: nearly always)
   CHECK(bright >= 10);
   // the same command writes the same label images
-  REQUIRE(run("dataset --out " + dir.file("h2") + " --count 3 --resolution-cm 10 --seed 4") == 0);
+  REQUIRE(run_quiet("dataset --out " + dir.file("h2") + " --count 3 --resolution-cm 10 --seed 4") ==
+          0);
   CHECK(slurp(dir.file("h/manta/000004_label.png")) ==
         slurp(dir.file("h2/manta/000004_label.png")));
   // the trainer reads the chips and skips the label images
@@ -122,9 +121,9 @@ TEST_CASE("dataset cli: every chip has a label image with the target where label
 
 TEST_CASE("dataset cli: shadow chips label a dark shadow beyond the target") {
   sonarloop::testing::TempDir dir("dataset-labels-shadow");
-  REQUIRE(run("dataset --out " + dir.file("s") +
-              " --kind shadow --count 2 --resolution-cm 10 --seed 9 --seabed flat") == 0);
-  const auto rows = read_csv(dir.path() / "s/labels.csv");
+  REQUIRE(run_quiet("dataset --out " + dir.file("s") +
+                    " --kind shadow --count 2 --resolution-cm 10 --seed 9 --seabed flat") == 0);
+  const auto rows = read_labels_csv(dir.path() / "s/labels.csv");
   REQUIRE(rows.size() == 8);
   for (const auto& r : rows) {
     const fs::path chip = dir.path() / "s" / r.at("file");

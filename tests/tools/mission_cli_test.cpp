@@ -16,6 +16,7 @@
 
 #include "autonomy/json_line.h"
 #include "tests/support/temp_dir.h"
+#include "tests/tools/sonarloop_cli.h"
 
 using namespace sonarloop;
 using sonarloop::autonomy::JsonLine;
@@ -23,8 +24,10 @@ using sonarloop::testing::slurp;
 
 namespace {
 
-const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
-const std::string kScenario =
+using sonarloop::testing::kBinary;
+using sonarloop::testing::run_logged;
+
+const std::string kTwoTargetsScenario =
     std::string(SONARLOOP_SOURCE_DIR) + "/tests/data/autonomy/two_targets.yaml";
 // The scenario's one survey line and its surroundings (see the scenario's header).
 const std::string kArea = "-40,-20,40,20";
@@ -34,20 +37,17 @@ constexpr double kAspectToleranceDeg = 10.0;  // of the 90 degrees
 constexpr double kPassRange_m = 25.0;         // the agent's default
 constexpr double kPassRangeTolerance_m = 3.0;
 
-int run(const testing::TempDir& dir, const std::string& args, const std::string& log) {
-  return testing::run_command(kBinary + " " + args + " > " + dir.file(log + ".out") + " 2> " +
-                              dir.file(log + ".err"));
-}
-
 // A two-class model (the scenario's types), 150 chips each on flat sand: a few seconds.
 std::string train_model(const testing::TempDir& dir) {
-  REQUIRE(run(dir,
-              "dataset --out " + dir.file("chips") +
-                  " --count 150 --resolution-cm 5 --seed 1 --threads 2 --seabed flat --classes "
-                  "manta,cylinder",
-              "dataset") == 0);
+  REQUIRE(
+      run_logged(dir,
+                 "dataset --out " + dir.file("chips") +
+                     " --count 150 --resolution-cm 5 --seed 1 --threads 2 --seabed flat --classes "
+                     "manta,cylinder",
+                 "dataset") == 0);
   const std::string model = dir.file("atr.slpca");
-  REQUIRE(run(dir, "train " + dir.file("chips") + " --out " + model + " --aspect-sectors 4 --p 10",
+  REQUIRE(run_logged(
+              dir, "train " + dir.file("chips") + " --out " + model + " --aspect-sectors 4 --p 10",
               "train") == 0);
   return model;
 }
@@ -66,11 +66,11 @@ TEST_CASE("an uncertain contact is re-looked from ~90 degrees and confirmed, ove
   testing::TempDir dir("mission_cli");
   const std::string model = train_model(dir);
   const std::string report = dir.file("mission.json");
-  const int rc = run(dir,
-                     "mission " + kScenario + " --model " + model + " --rate " + kRate +
-                         " --threshold 1e6 --area " + kArea + " --report " + report + " --out " +
-                         dir.file("logs") + " --quiet",
-                     "mission");
+  const int rc = run_logged(dir,
+                            "mission " + kTwoTargetsScenario + " --model " + model + " --rate " +
+                                kRate + " --threshold 1e6 --area " + kArea + " --report " + report +
+                                " --out " + dir.file("logs") + " --quiet",
+                            "mission");
   INFO(slurp(dir.file("mission.err")) << slurp(dir.file("logs/agent.log")));
   REQUIRE(rc == 0);
   const JsonLine m = parse_file(report);
@@ -121,9 +121,10 @@ TEST_CASE("Ctrl-C stops the mission's three processes and still writes the repor
   REQUIRE(pid >= 0);
   if (pid == 0) {
     std::freopen(dir.file("mission.err").c_str(), "w", stderr);
-    execl(kBinary.c_str(), kBinary.c_str(), "mission", kScenario.c_str(), "--model", model.c_str(),
-          "--rate", kRate.c_str(), "--area", kArea.c_str(), "--report", report.c_str(), "--out",
-          dir.file("logs").c_str(), "--quiet", static_cast<char*>(nullptr));
+    execl(kBinary.c_str(), kBinary.c_str(), "mission", kTwoTargetsScenario.c_str(), "--model",
+          model.c_str(), "--rate", kRate.c_str(), "--area", kArea.c_str(), "--report",
+          report.c_str(), "--out", dir.file("logs").c_str(), "--quiet",
+          static_cast<char*>(nullptr));
     _exit(127);
   }
   // once the agent flies (nav connected), interrupt

@@ -16,15 +16,17 @@
 
 #include "tests/support/skip.h"
 #include "tests/support/temp_dir.h"
+#include "tests/tools/sonarloop_cli.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
+using sonarloop::testing::file_tree;
+using sonarloop::testing::kBinary;
 using sonarloop::testing::run_command;
 using sonarloop::testing::slurp;
 
-const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
 // a hung job fails the test instead of waiting for CTest's timeout; in a sanitizer build, Open
 // MPI's own allocations left at exit are not ours to report (our code's leaks show in the
 // one-process runs and tests/tools/chip_ranks_test.cpp)
@@ -51,15 +53,6 @@ int run_one(const std::string& args, const std::string& log) {
 
 int run_two(const std::string& args, const std::string& log) {
   return run_command(kMpirun + kBinary + " " + args + " > '" + log + "' 2>&1");
-}
-
-// Every regular file below `root`, relative to it, with its bytes.
-std::map<std::string, std::string> tree(const fs::path& root) {
-  std::map<std::string, std::string> out;
-  for (const auto& e : fs::recursive_directory_iterator(root)) {
-    if (e.is_regular_file()) out[fs::relative(e.path(), root).generic_string()] = slurp(e.path());
-  }
-  return out;
 }
 
 // A sweep results CSV without its timing columns.
@@ -101,8 +94,8 @@ TEST_CASE("mpi: a dataset on 2 ranks is byte-identical to one process", "[mpi_cl
   INFO(slurp(log));
   REQUIRE(rc == 0);
   CHECK(slurp(log).find("on 2 ranks") != std::string::npos);  // really one job of two ranks
-  const auto one = tree(dir.path() / "one");
-  const auto two = tree(dir.path() / "two");
+  const auto one = file_tree(dir.path() / "one");
+  const auto two = file_tree(dir.path() / "two");
   // labels.csv lists every chip of each resolution, after its header line
   REQUIRE(one.count("labels.csv") == 1);
   CHECK(std::count(one.at("labels.csv").begin(), one.at("labels.csv").end(), '\n') == 1 + 2 * 21);

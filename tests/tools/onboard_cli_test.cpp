@@ -23,13 +23,16 @@
 #include "config/loader/scenario_loader.h"
 #include "sim/targets/target_type.h"
 #include "tests/support/temp_dir.h"
+#include "tests/tools/sonarloop_cli.h"
 
 using namespace sonarloop;
 
 namespace {
 
-const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
-const std::string kScenario = std::string(SONARLOOP_SOURCE_DIR) + "/config/default.yaml";
+using sonarloop::testing::kBinary;
+using sonarloop::testing::run_logged;
+
+const std::string kDefaultScenario = std::string(SONARLOOP_SOURCE_DIR) + "/config/default.yaml";
 // Contacts farther than this from their target do not count as finding it (the brief's 1 m).
 constexpr double kMaxPositionError_m = 1.0;
 // Other contacts allowed: the default scenario's seabed has large clutter rocks (up to 0.8 m,
@@ -39,15 +42,10 @@ constexpr int kMaxFalseContacts = 5;
 // scenario's own seabed, 8 aspect sectors. Measured on independent training sets (dataset seeds
 // 201-205): 20 of 20 targets identified; with 300 per class 38 of 40 (seeds 101-110).
 const std::string kDatasetArgs =
-    " --count 450 --resolution-cm 5 --seed 1 --threads 2 --seabed " + kScenario;
+    " --count 450 --resolution-cm 5 --seed 1 --threads 2 --seabed " + kDefaultScenario;
 const std::string kTrainArgs = " --aspect-sectors 8 --p 10";
 
 using sonarloop::testing::slurp;
-
-int run(const testing::TempDir& dir, const std::string& args, const std::string& log) {
-  return testing::run_command(kBinary + " " + args + " > " + dir.file(log + ".out") + " 2> " +
-                              dir.file(log + ".err"));
-}
 
 // The value of "key": in a flat JSON line (numbers, strings, true/false/null).
 std::optional<std::string> json_value(const std::string& line, const std::string& key) {
@@ -153,7 +151,7 @@ long long stat_of(const std::string& json, const std::string& key) {
 
 TEST_CASE("onboard cli: the default scenario's four targets, in-process, over UDP, from a file") {
   testing::TempDir dir("onboard-cli");
-  const config::Scenario sc = config::load_scenario(kScenario);
+  const config::Scenario sc = config::load_scenario(kDefaultScenario);
   const LocalTangentPlane plane(
       GeoPoint{sc.scene.origin.latitude_deg, sc.scene.origin.longitude_deg});
   REQUIRE(sc.scene.targets.size() == 4);
@@ -161,16 +159,16 @@ TEST_CASE("onboard cli: the default scenario's four targets, in-process, over UD
   // the model: 5 cm highlight chips of the four classes
   const std::string chips = dir.file("chips");
   const std::string model = dir.file("atr.slpca");
-  REQUIRE(run(dir, "dataset --out " + chips + kDatasetArgs, "dataset") == 0);
-  REQUIRE(run(dir, "train " + chips + " --out " + model + kTrainArgs, "train") == 0);
+  REQUIRE(run_logged(dir, "dataset --out " + chips + kDatasetArgs, "dataset") == 0);
+  REQUIRE(run_logged(dir, "train " + chips + " --out " + model + kTrainArgs, "train") == 0);
 
   // 1. in-process: run --classify, as fast as possible (lossless), recording the pings
   const std::string inproc = dir.file("inproc.jsonl");
-  REQUIRE(run(dir,
-              "run " + kScenario + " --rate max --threads 2 --quiet --classify " + model +
-                  " --contacts " + inproc + " --record " + dir.file("rec") + " --stats-json " +
-                  dir.file("run_stats.json"),
-              "run") == 0);
+  REQUIRE(run_logged(dir,
+                     "run " + kDefaultScenario + " --rate max --threads 2 --quiet --classify " +
+                         model + " --contacts " + inproc + " --record " + dir.file("rec") +
+                         " --stats-json " + dir.file("run_stats.json"),
+                     "run") == 0);
   const std::string run_err = slurp(dir.file("run.err"));
   INFO(run_err);
   CHECK_THAT(run_err, Catch::Contains("onboard: ") && Catch::Contains("lost 0") &&
@@ -186,19 +184,19 @@ TEST_CASE("onboard cli: the default scenario's four targets, in-process, over UD
 
   // 2. the recording: the same pings give the same contacts, byte for byte
   const std::string from_file = dir.file("file.jsonl");
-  REQUIRE(run(dir,
-              "onboard --xtf " + dir.file("rec") + "/pings.xtf --model " + model + " --contacts " +
-                  from_file,
-              "file") == 0);
+  REQUIRE(run_logged(dir,
+                     "onboard --xtf " + dir.file("rec") + "/pings.xtf --model " + model +
+                         " --contacts " + from_file,
+                     "file") == 0);
   CHECK(slurp(from_file) == slurp(inproc));
   // --origin first-ping: the frame of recordings of no scenario. The default scenario's vehicle
   // starts at (-45, 0) (config/default.yaml), so every contact moves by the same offset, about
   // 45 m north (the first ping's navigation noise aside)
   const std::string first_ping = dir.file("first_ping.jsonl");
-  REQUIRE(run(dir,
-              "onboard --xtf " + dir.file("rec") + "/pings.xtf --model " + model +
-                  " --origin first-ping --contacts " + first_ping,
-              "first_ping") == 0);
+  REQUIRE(run_logged(dir,
+                     "onboard --xtf " + dir.file("rec") + "/pings.xtf --model " + model +
+                         " --origin first-ping --contacts " + first_ping,
+                     "first_ping") == 0);
   const std::vector<Contact> c2 = read_contacts(first_ping, plane);
   REQUIRE(c2.size() == c1.size());
   REQUIRE_FALSE(c1.empty());
@@ -212,11 +210,11 @@ TEST_CASE("onboard cli: the default scenario's four targets, in-process, over UD
   // and a listener that waits 10 s for a datagram: CI machines are slow and shared (under
   // ASan with other tests beside it a ping takes up to 30 ms, and 5x real time is 13 ms a ping)
   const auto [pid, port] = start_listener(dir, model);
-  REQUIRE(run(dir,
-              "run " + kScenario +
-                  " --rate 2 --threads 2 --quiet --udp 127.0.0.1:" + std::to_string(port) +
-                  " --epoch 1767225600 --stats-json " + dir.file("udp_run.json"),
-              "udp_run") == 0);
+  REQUIRE(run_logged(dir,
+                     "run " + kDefaultScenario +
+                         " --rate 2 --threads 2 --quiet --udp 127.0.0.1:" + std::to_string(port) +
+                         " --epoch 1767225600 --stats-json " + dir.file("udp_run.json"),
+                     "udp_run") == 0);
   int status = 0;
   bool exited = false;
   for (int k = 0; k < 600 && !exited; ++k) {  // --idle-exit 10: it ends on its own
@@ -255,22 +253,23 @@ TEST_CASE("onboard cli: the default scenario's four targets, in-process, over UD
 
 TEST_CASE("onboard cli: usage errors") {
   testing::TempDir dir("onboard-cli-usage");
-  CHECK(run(dir, "onboard", "u") == 2);
-  CHECK(run(dir, "onboard --listen 127.0.0.1:0 --xtf x.xtf", "u") == 2);
-  CHECK(run(dir, "onboard --xtf x.xtf --idle-exit 2", "u") == 2);
-  CHECK(run(dir, "onboard --xtf " + dir.file("missing.xtf"), "u") == 1);
-  CHECK(run(dir, "onboard --listen 127.0.0.1:0 --model " + dir.file("missing.slpca"), "u") == 1);
-  CHECK_THAT(slurp(dir.file("u.err")), Catch::Contains("missing.slpca"));
-  CHECK(run(dir, "run --contacts x.jsonl", "u") == 2);
-  CHECK(run(dir, "onboard --xtf x.xtf --origin 91,0", "u") == 2);
-  CHECK_THAT(slurp(dir.file("u.err")), Catch::Contains("--origin: expected LAT,LON"));
-  CHECK(run(dir, "onboard --xtf x.xtf --origin 1,2 --scenario x.yaml", "u") == 2);
-  // --stats-json into an unwritable place: refused at once, with the reason (issue 11)
-  CHECK(run(dir, "onboard --listen 127.0.0.1:0 --stats-json " + dir.file("no/dir/s.json"), "u") ==
+  CHECK(run_logged(dir, "onboard", "u") == 2);
+  CHECK(run_logged(dir, "onboard --listen 127.0.0.1:0 --xtf x.xtf", "u") == 2);
+  CHECK(run_logged(dir, "onboard --xtf x.xtf --idle-exit 2", "u") == 2);
+  CHECK(run_logged(dir, "onboard --xtf " + dir.file("missing.xtf"), "u") == 1);
+  CHECK(run_logged(dir, "onboard --listen 127.0.0.1:0 --model " + dir.file("missing.slpca"), "u") ==
         1);
+  CHECK_THAT(slurp(dir.file("u.err")), Catch::Contains("missing.slpca"));
+  CHECK(run_logged(dir, "run --contacts x.jsonl", "u") == 2);
+  CHECK(run_logged(dir, "onboard --xtf x.xtf --origin 91,0", "u") == 2);
+  CHECK_THAT(slurp(dir.file("u.err")), Catch::Contains("--origin: expected LAT,LON"));
+  CHECK(run_logged(dir, "onboard --xtf x.xtf --origin 1,2 --scenario x.yaml", "u") == 2);
+  // --stats-json into an unwritable place: refused at once, with the reason (issue 11)
+  CHECK(run_logged(dir, "onboard --listen 127.0.0.1:0 --stats-json " + dir.file("no/dir/s.json"),
+                   "u") == 1);
   CHECK_THAT(slurp(dir.file("u.err")),
              Catch::Contains("--stats-json " + dir.file("no/dir/s.json") +
                              ": cannot write: No such file or directory"));
-  CHECK(run(dir, "onboard --help", "u") == 0);
+  CHECK(run_logged(dir, "onboard --help", "u") == 0);
   CHECK_THAT(slurp(dir.file("u.out")), Catch::Contains("--listen") && Catch::Contains("examples"));
 }

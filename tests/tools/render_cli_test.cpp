@@ -7,16 +7,13 @@
 
 #include "drivers/xtf/xtf_file.h"
 #include "tests/support/temp_dir.h"
+#include "tests/tools/sonarloop_cli.h"
 
 namespace {
 
-const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
-
+using sonarloop::testing::kBinary;
+using sonarloop::testing::run_quiet;
 using sonarloop::testing::slurp;
-
-int run(const std::string& args) {
-  return sonarloop::testing::run_command(kBinary + " " + args + " > /dev/null 2>&1");
-}
 
 }  // namespace
 
@@ -24,8 +21,8 @@ TEST_CASE(
     "render cli: the same scenario and seed give byte-identical pings.xtf on 1 or 2 threads") {
   sonarloop::testing::TempDir dir("render-cli");
   const std::string common = " --resolution-cm 10 --track -32,5:-28,5 --altitude 6";
-  REQUIRE(run("render --out " + dir.file("a") + common + " --threads 1") == 0);
-  REQUIRE(run("render --out " + dir.file("b") + common + " --threads 2") == 0);
+  REQUIRE(run_quiet("render --out " + dir.file("a") + common + " --threads 1") == 0);
+  REQUIRE(run_quiet("render --out " + dir.file("b") + common + " --threads 2") == 0);
   const std::string a = slurp(dir.file("a/pings.xtf"));
   const std::string b = slurp(dir.file("b/pings.xtf"));
   REQUIRE(!a.empty());
@@ -50,10 +47,10 @@ TEST_CASE(
 
 TEST_CASE("render cli: bad options are usage errors") {
   sonarloop::testing::TempDir dir("render-cli-bad");
-  CHECK(run("render --out " + dir.file("x") + " --resolution-cm 0") == 2);
-  CHECK(run("render --out " + dir.file("x") + " --track 1,2:1,2") == 2);
-  CHECK(run("render") == 2);
-  CHECK(run("render " + dir.file("missing.yaml") + " --out " + dir.file("x")) == 1);
+  CHECK(run_quiet("render --out " + dir.file("x") + " --resolution-cm 0") == 2);
+  CHECK(run_quiet("render --out " + dir.file("x") + " --track 1,2:1,2") == 2);
+  CHECK(run_quiet("render") == 2);
+  CHECK(run_quiet("render " + dir.file("missing.yaml") + " --out " + dir.file("x")) == 1);
 }
 
 TEST_CASE("render cli: a track too long for memory is refused up front, naming the size") {
@@ -70,5 +67,5 @@ TEST_CASE("render cli: a track too long for memory is refused up front, naming t
   CHECK(err.find("GiB of memory for the waterfall, more than the ") != std::string::npos);
   CHECK(err.find("bad_alloc") == std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir.file("x")));
-  CHECK(run("render --out " + dir.file("y") + " --track 0,0:nan,1") == 2);
+  CHECK(run_quiet("render --out " + dir.file("y") + " --track 0,0:nan,1") == 2);
 }

@@ -8,16 +8,13 @@
 
 #include "drivers/image/png.h"
 #include "tests/support/temp_dir.h"
+#include "tests/tools/sonarloop_cli.h"
 
 namespace {
 
-const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
-
+using sonarloop::testing::kBinary;
+using sonarloop::testing::run_quiet;
 using sonarloop::testing::slurp;
-
-int run(const std::string& args) {
-  return sonarloop::testing::run_command(kBinary + " " + args + " > /dev/null 2>&1");
-}
 
 // Flattens annotations.json and truth.json into lines a test reads without a JSON parser:
 //   box PART X Y W H AREA CATEGORY_NAME TARGET SIDE
@@ -90,8 +87,8 @@ TEST_CASE("render cli: labels.png lines up with waterfall.png, the boxes hold it
   sonarloop::testing::TempDir dir("render-labels");
   // past the manta at (-30, 10) and the rockan at (-10, ...) of the default scenario, 5 m away
   const std::string common = " --resolution-cm 10 --track -34,5:-26,5 --altitude 6";
-  REQUIRE(run("render --out " + dir.file("a") + common + " --threads 1") == 0);
-  REQUIRE(run("render --out " + dir.file("b") + common + " --threads 2") == 0);
+  REQUIRE(run_quiet("render --out " + dir.file("a") + common + " --threads 1") == 0);
+  REQUIRE(run_quiet("render --out " + dir.file("b") + common + " --threads 2") == 0);
   CHECK(slurp(dir.file("a/labels.png")) == slurp(dir.file("b/labels.png")));
   CHECK(slurp(dir.file("a/annotations.json")) == slurp(dir.file("b/annotations.json")));
 

@@ -15,6 +15,7 @@
 #include "drivers/xtf/xtf_file.h"
 #include "tests/support/skip.h"
 #include "tests/support/temp_dir.h"
+#include "tests/tools/sonarloop_cli.h"
 
 using sonarloop::testing::run_command;
 using sonarloop::testing::TempDir;
@@ -23,9 +24,9 @@ namespace can = sonarloop::can;
 
 namespace {
 
-const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
-const std::string kRealXtf =
-    std::string(SONARLOOP_SOURCE_DIR) + "/tests/data/xtf/scotsman-iver2.xtf";
+using sonarloop::testing::kBinary;
+using sonarloop::testing::kRealXtf;
+
 constexpr std::size_t kRealPings = 461;
 
 using sonarloop::testing::slurp;

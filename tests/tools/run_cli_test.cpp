@@ -37,13 +37,15 @@
 #include "tests/emulator/test_scenario.h"
 #include "tests/support/skip.h"
 #include "tests/support/temp_dir.h"
+#include "tests/tools/sonarloop_cli.h"
 
 using namespace sonarloop;
 
 namespace {
 
-const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
-const std::string kPython = SONARLOOP_PYTHON;
+using sonarloop::testing::kBinary;
+using sonarloop::testing::kPython;
+
 const std::string kHelpers = std::string(SONARLOOP_SOURCE_DIR) + "/tests/emulator/";
 
 using sonarloop::testing::slurp;

@@ -13,23 +13,23 @@
 #include <vector>
 
 #include "tests/support/temp_dir.h"
+#include "tests/tools/sonarloop_cli.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
-
+using sonarloop::testing::kBinary;
 using sonarloop::testing::slurp;
 
-int run(const std::string& args, const std::string& log) {
+int run_to_log(const std::string& args, const std::string& log) {
   return sonarloop::testing::run_command(kBinary + " " + args + " > '" + log + "' 2>&1");
 }
 
 using Row = std::map<std::string, std::string>;
 
 // Parses a CSV with a header line (no quoted fields: sweep writes none).
-std::vector<Row> read_csv(const fs::path& path) {
+std::vector<Row> read_sweep_csv(const fs::path& path) {
   std::stringstream ss(slurp(path));
   std::string line;
   std::vector<std::string> header;
@@ -86,14 +86,14 @@ std::string counts_only(const std::vector<Row>& rows) {
 TEST_CASE("sweep: help and bad options", "[sweep_cli]") {
   const sonarloop::testing::TempDir dir("sweep_cli_help");
   const std::string log = dir.file("log.txt");
-  REQUIRE(run("sweep --help", log) == 0);
+  REQUIRE(run_to_log("sweep --help", log) == 0);
   CHECK(slurp(log).find("fig11") != std::string::npos);
-  CHECK(run("sweep --experiment fig99 --out " + dir.file("o"), log) == 2);
+  CHECK(run_to_log("sweep --experiment fig99 --out " + dir.file("o"), log) == 2);
   CHECK(slurp(log).find("fig99") != std::string::npos);
   CHECK(slurp(log).find("fig11") != std::string::npos);  // the allowed names
-  CHECK(run("sweep --resolutions-cm 5,abc --out " + dir.file("o"), log) == 2);
+  CHECK(run_to_log("sweep --resolutions-cm 5,abc --out " + dir.file("o"), log) == 2);
   CHECK(slurp(log).find("abc") != std::string::npos);
-  CHECK(run("sweep --non-mine manta --out " + dir.file("o"), log) == 2);
+  CHECK(run_to_log("sweep --non-mine manta --out " + dir.file("o"), log) == 2);
   CHECK(slurp(log).find("mine-like") != std::string::npos);
 }
 
@@ -103,14 +103,14 @@ TEST_CASE("sweep: highlights identify better at 5 cm than at 20 cm (Fig. 11 tren
   const fs::path out = dir.path() / "out";
   const std::string log = dir.file("log.txt");
   // 4 targets x (40 training + 80 test) chips at each resolution: ~1000 chips, ~15 s on 2 cores
-  const int rc =
-      run("sweep --experiment fig11 --resolutions-cm 5,20 --train-count 40 "
-          "--test-count 80 --threads 2 --no-plot --out " +
-              out.string(),
-          log);
+  const int rc = run_to_log(
+      "sweep --experiment fig11 --resolutions-cm 5,20 --train-count 40 "
+      "--test-count 80 --threads 2 --no-plot --out " +
+          out.string(),
+      log);
   INFO(slurp(log));
   REQUIRE(rc == 0);
-  const auto rows = read_csv(out / "fig11.csv");
+  const auto rows = read_sweep_csv(out / "fig11.csv");
   REQUIRE(rows.size() == 2 * 8);  // 2 resolutions x (4 targets + all + 3 test seabeds)
   long seabed_n = 0;
   for (const Row& r : rows) {
@@ -136,7 +136,7 @@ TEST_CASE("sweep: highlights identify better at 5 cm than at 20 cm (Fig. 11 tren
   CHECK(num(coarse, "error_pct") - num(fine, "error_pct") > 10.0);
 
   // the confusion matrix holds every test chip once
-  const auto conf = read_csv(out / "fig11_confusion.csv");
+  const auto conf = read_sweep_csv(out / "fig11_confusion.csv");
   REQUIRE(conf.size() == 2 * 16);
   long total = 0;
   for (const Row& r : conf)
@@ -164,10 +164,10 @@ TEST_CASE("sweep: the same seed gives the same counts on any number of threads",
   const std::string common =
       "sweep --experiment fig13 --resolutions-cm 20 --train-count 6 --test-count 5 --p 4 "
       "--no-plot --seed 3 ";
-  REQUIRE(run(common + "--threads 1 --out " + dir.file("a"), log) == 0);
-  REQUIRE(run(common + "--threads 2 --out " + dir.file("b"), log) == 0);
-  const auto a = read_csv(dir.path() / "a" / "fig13.csv");
-  const auto b = read_csv(dir.path() / "b" / "fig13.csv");
+  REQUIRE(run_to_log(common + "--threads 1 --out " + dir.file("a"), log) == 0);
+  REQUIRE(run_to_log(common + "--threads 2 --out " + dir.file("b"), log) == 0);
+  const auto a = read_sweep_csv(dir.path() / "a" / "fig13.csv");
+  const auto b = read_sweep_csv(dir.path() / "b" / "fig13.csv");
   REQUIRE(a.size() == 7 + 2 + 3);  // 7 targets, all, mine_vs_non_mine, 3 test seabeds
   CHECK(counts_only(a) == counts_only(b));
   CHECK(slurp(dir.path() / "a" / "fig13_confusion.csv") ==

@@ -14,18 +14,18 @@
 #include "drivers/image/png.h"
 #include "tests/atr/synthetic_chips.h"
 #include "tests/support/temp_dir.h"
+#include "tests/tools/sonarloop_cli.h"
 
 namespace fs = std::filesystem;
 using namespace sonarloop;
 
 namespace {
 
-const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
-
+using sonarloop::testing::kBinary;
 using sonarloop::testing::slurp;
 
 // Runs the binary; stdout and stderr go to files in `dir`.
-int run(const testing::TempDir& dir, const std::string& args) {
+int run_capturing(const testing::TempDir& dir, const std::string& args) {
   return testing::run_command(kBinary + " " + args + " > " + dir.file("stdout.txt") + " 2> " +
                               dir.file("stderr.txt"));
 }
@@ -67,7 +67,7 @@ TEST_CASE("train/classify cli: train on PNG chips, classify a labelled test fold
                          std::vector<std::uint8_t>(256, 77));
   const std::string model = dir.file("atr.slpca");
 
-  REQUIRE(run(dir, "train " + train.string() + " --out " + model) == 0);
+  REQUIRE(run_capturing(dir, "train " + train.string() + " --out " + model) == 0);
   const std::string train_out = slurp(dir.file("stdout.txt"));
   CHECK_THAT(train_out, Catch::Contains("36 chips") && Catch::Contains("manta") &&
                             Catch::Contains("mine-like") && Catch::Contains("rank 11") &&
@@ -85,8 +85,8 @@ TEST_CASE("train/classify cli: train on PNG chips, classify a labelled test fold
 
   const std::string csv = dir.file("scores.csv");
   const std::string json = dir.file("scores.json");
-  REQUIRE(run(dir, "classify " + model + " " + test.string() + " --csv " + csv + " --json " +
-                       json) == 0);
+  REQUIRE(run_capturing(dir, "classify " + model + " " + test.string() + " --csv " + csv +
+                                 " --json " + json) == 0);
   const std::string out = slurp(dir.file("stdout.txt"));
   CHECK_THAT(out, Catch::Contains("classified 30 chips (1 rejected)") &&
                       Catch::Contains("accuracy: 100.00 % (30 of 30)") &&
@@ -138,34 +138,36 @@ TEST_CASE("train/classify cli: train on PNG chips, classify a labelled test fold
   CHECK(rejected == 1);
 
   // one chip on its own
-  REQUIRE(run(dir, "classify " + model + " " + (test / "manta" / "003.png").string()) == 0);
+  REQUIRE(run_capturing(dir, "classify " + model + " " + (test / "manta" / "003.png").string()) ==
+          0);
   CHECK_THAT(slurp(dir.file("stdout.txt")),
              Catch::Contains(" manta ") && Catch::Contains("classified 1 chip (0 rejected)"));
   // ... a degenerate one: nothing classified, exit 1 with the reason
-  CHECK(run(dir, "classify " + model + " " + (test / "rock" / "flat.png").string()) == 1);
+  CHECK(run_capturing(dir, "classify " + model + " " + (test / "rock" / "flat.png").string()) == 1);
   CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("constant chip"));
 
   // an unlabelled folder: predictions, no scores
   fs::create_directories(dir.path() / "flat");
   fs::copy_file(test / "rock" / "001.png", dir.path() / "flat" / "a.png");
   fs::copy_file(test / "cylinder" / "001.png", dir.path() / "flat" / "b.png");
-  REQUIRE(run(dir, "classify " + model + " " + (dir.path() / "flat").string()) == 0);
+  REQUIRE(run_capturing(dir, "classify " + model + " " + (dir.path() / "flat").string()) == 0);
   const std::string flat = slurp(dir.file("stdout.txt"));
   CHECK_THAT(flat, Catch::Contains("a.png") && Catch::Contains(" rock ") &&
                        Catch::Contains(" cylinder ") && !Catch::Contains("accuracy"));
 
   // multi-aspect training from labels.csv, and group subspaces
-  REQUIRE(run(dir, "train " + train.string() + " --out " + dir.file("m2.slpca") +
-                       " --aspect-sectors 2 --p 5 --group-subspaces") == 0);
+  REQUIRE(run_capturing(dir, "train " + train.string() + " --out " + dir.file("m2.slpca") +
+                                 " --aspect-sectors 2 --p 5 --group-subspaces") == 0);
   const atr::Model m2 = atr::load_model(dir.file("m2.slpca"));
   CHECK(m2.aspect_sectors == 2);
   CHECK(m2.classes[0].subspaces.size() == 2);
   CHECK(m2.groups.size() == 2);
-  REQUIRE(run(dir, "classify " + model + " " + test.string() + " --quiet") == 0);
+  REQUIRE(run_capturing(dir, "classify " + model + " " + test.string() + " --quiet") == 0);
   CHECK_THAT(slurp(dir.file("stdout.txt")), !Catch::Contains("001.png"));
 
   // a pre-processing model: stored in the file, applied by classify to the full-size chips
-  REQUIRE(run(dir, "train " + train.string() + " --out " + dir.file("crop.slpca") +
+  REQUIRE(run_capturing(
+              dir, "train " + train.string() + " --out " + dir.file("crop.slpca") +
                        " --crop 0.5 --multilook 3 --levels above_seabed --reject-quantile 0.9") ==
           0);
   CHECK_THAT(slurp(dir.file("stdout.txt")),
@@ -177,8 +179,8 @@ TEST_CASE("train/classify cli: train on PNG chips, classify a labelled test fold
   CHECK(m3.preprocess.multilook_px == 3);
   CHECK(m3.preprocess.levels == atr::ChipLevels::kAboveSeabed);
   CHECK(std::isfinite(m3.classes[0].reject_distance));
-  REQUIRE(run(dir, "classify " + dir.file("crop.slpca") + " " + test.string() + " --json " +
-                       dir.file("crop.json")) == 0);
+  REQUIRE(run_capturing(dir, "classify " + dir.file("crop.slpca") + " " + test.string() +
+                                 " --json " + dir.file("crop.json")) == 0);
   CHECK_THAT(slurp(dir.file("stdout.txt")), Catch::Contains("classified 30 chips (1 rejected)"));
   CHECK_THAT(slurp(dir.file("crop.json")), Catch::Contains("\"open_set_score\":"));
   // the model without open-set rejection reports no such field
@@ -189,37 +191,40 @@ TEST_CASE("train/classify cli: usage and input errors") {
   testing::TempDir dir("train-classify-cli-errors");
   const fs::path train = dir.path() / "train";
   write_chip_folder(train, 4, 3);
-  CHECK(run(dir, "train " + train.string()) == 2);  // no --out
+  CHECK(run_capturing(dir, "train " + train.string()) == 2);  // no --out
   CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("--out"));
-  CHECK(run(dir, "train " + train.string() + " --out " + dir.file("m") + " --p 0") == 2);
-  CHECK(run(dir, "train " + train.string() + " --out " + dir.file("m") + " --multilook 4") == 2);
+  CHECK(run_capturing(dir, "train " + train.string() + " --out " + dir.file("m") + " --p 0") == 2);
+  CHECK(run_capturing(
+            dir, "train " + train.string() + " --out " + dir.file("m") + " --multilook 4") == 2);
   CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("odd"));
-  CHECK(run(dir, "train " + train.string() + " --out " + dir.file("m") + " --levels bright") == 2);
+  CHECK(run_capturing(
+            dir, "train " + train.string() + " --out " + dir.file("m") + " --levels bright") == 2);
   CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("above_seabed"));
-  CHECK(run(dir, "train " + train.string() + " --out " + dir.file("m") + " --crop 1.5") == 2);
-  CHECK(run(dir, "train --out " + dir.file("m")) == 2);
-  CHECK(run(dir, "classify " + dir.file("m")) == 2);
-  CHECK(run(dir, "train " + dir.file("missing") + " --out " + dir.file("m")) == 1);
+  CHECK(run_capturing(dir, "train " + train.string() + " --out " + dir.file("m") + " --crop 1.5") ==
+        2);
+  CHECK(run_capturing(dir, "train --out " + dir.file("m")) == 2);
+  CHECK(run_capturing(dir, "classify " + dir.file("m")) == 2);
+  CHECK(run_capturing(dir, "train " + dir.file("missing") + " --out " + dir.file("m")) == 1);
   CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("not a folder"));
 
   // mixed sizes: the odd chip is named
   image::write_png_gray8((train / "rock" / "big.png").string(), 17, 16,
                          std::vector<std::uint8_t>(17 * 16, 5));
-  CHECK(run(dir, "train " + train.string() + " --out " + dir.file("m")) == 1);
+  CHECK(run_capturing(dir, "train " + train.string() + " --out " + dir.file("m")) == 1);
   CHECK_THAT(slurp(dir.file("stderr.txt")),
              Catch::Contains("rock/big.png") && Catch::Contains("same size"));
   fs::remove(train / "rock" / "big.png");
 
   // aspect sectors without aspect angles for every chip
   fs::remove(train / "labels.csv");
-  CHECK(run(dir, "train " + train.string() + " --out " + dir.file("m") + " --aspect-sectors 4") ==
-        1);
+  CHECK(run_capturing(dir, "train " + train.string() + " --out " + dir.file("m") +
+                               " --aspect-sectors 4") == 1);
   CHECK_THAT(slurp(dir.file("stderr.txt")),
              Catch::Contains("aspect angle for every chip") && Catch::Contains("no labels.csv"));
 
   // a file that is not a model
   std::ofstream(dir.file("bad.slpca")) << "hello";
-  CHECK(run(dir, "classify " + dir.file("bad.slpca") + " " + train.string()) == 1);
+  CHECK(run_capturing(dir, "classify " + dir.file("bad.slpca") + " " + train.string()) == 1);
   CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("bad magic"));
 }
 
@@ -256,11 +261,12 @@ TEST_CASE("train/classify cli: real chips: JPEG, --size, --skip-bad-chips, class
   const std::string model = dir.file("real.slpca");
 
   // without --skip-bad-chips the first bad file stops training
-  CHECK(run(dir, "train " + root.string() + " --out " + model) == 1);
+  CHECK(run_capturing(dir, "train " + root.string() + " --out " + model) == 1);
   CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("notes.txt"));
 
   // with it: one line each, and training goes on
-  REQUIRE(run(dir, "train " + root.string() + " --out " + model + " --skip-bad-chips") == 0);
+  REQUIRE(run_capturing(dir, "train " + root.string() + " --out " + model + " --skip-bad-chips") ==
+          0);
   const std::string err = slurp(dir.file("stderr.txt"));
   CHECK_THAT(err, Catch::Contains("skipped 'alpha/corrupt.png'") &&
                       Catch::Contains("not a PNG or JPEG") &&
@@ -282,7 +288,7 @@ TEST_CASE("train/classify cli: real chips: JPEG, --size, --skip-bad-chips, class
   }
 
   // no class is mine-like: classify prints no mine / non-mine decision or score
-  REQUIRE(run(dir, "classify " + model + " " + root.string() + " --skip-bad-chips") == 0);
+  REQUIRE(run_capturing(dir, "classify " + model + " " + root.string() + " --skip-bad-chips") == 0);
   out = slurp(dir.file("stdout.txt"));
   CHECK_THAT(out, Catch::Contains("classified 24 chips (1 rejected)") &&
                       Catch::Contains("skipped 2 unreadable files") &&
@@ -293,7 +299,8 @@ TEST_CASE("train/classify cli: real chips: JPEG, --size, --skip-bad-chips, class
 
   // --size resamples every chip: the odd one now trains, and the model is 8 x 8
   REQUIRE(
-      run(dir, "train " + root.string() + " --out " + dir.file("small.slpca") +
+      run_capturing(
+          dir, "train " + root.string() + " --out " + dir.file("small.slpca") +
                    " --skip-bad-chips --size 8x8 --mine-like beta --height beta=0.3,alpha=0.25") ==
       0);
   out = slurp(dir.file("stdout.txt"));
@@ -309,23 +316,23 @@ TEST_CASE("train/classify cli: real chips: JPEG, --size, --skip-bad-chips, class
   CHECK(m.classes[1].height_m == 0.3);
   CHECK_FALSE(m.classes[2].height_m);
   // classify resamples too, and now decides mine / non-mine
-  REQUIRE(run(dir, "classify " + dir.file("small.slpca") + " " + root.string() +
-                       " --skip-bad-chips --size 8x8") == 0);
+  REQUIRE(run_capturing(dir, "classify " + dir.file("small.slpca") + " " + root.string() +
+                                 " --skip-bad-chips --size 8x8") == 0);
   CHECK_THAT(slurp(dir.file("stdout.txt")), Catch::Contains("classified 25 chips (0 rejected)") &&
                                                 Catch::Contains("mine / non-mine:"));
   // without --size the 16 x 16 chips do not fit the 8 x 8 model: rejected, named
-  CHECK(run(dir, "classify " + dir.file("small.slpca") + " " + root.string() +
-                     " --skip-bad-chips --quiet") == 1);
+  CHECK(run_capturing(dir, "classify " + dir.file("small.slpca") + " " + root.string() +
+                               " --skip-bad-chips --quiet") == 1);
   CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("8 x 8"));
 
   // option errors name the value
-  CHECK(run(dir, "train " + root.string() + " --out " + model + " --size 8by8") == 2);
+  CHECK(run_capturing(dir, "train " + root.string() + " --out " + model + " --size 8by8") == 2);
   CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("--size"));
-  CHECK(run(dir, "train " + root.string() + " --out " + model +
-                     " --skip-bad-chips --mine-like delta") == 2);
+  CHECK(run_capturing(dir, "train " + root.string() + " --out " + model +
+                               " --skip-bad-chips --mine-like delta") == 2);
   CHECK_THAT(slurp(dir.file("stderr.txt")),
              Catch::Contains("delta") && Catch::Contains("alpha, beta, gamma"));
-  CHECK(run(dir, "train " + root.string() + " --out " + model +
-                     " --skip-bad-chips --height beta=-1") == 2);
+  CHECK(run_capturing(dir, "train " + root.string() + " --out " + model +
+                               " --skip-bad-chips --height beta=-1") == 2);
   CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("CLASS=METRES"));
 }

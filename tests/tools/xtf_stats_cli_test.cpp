@@ -15,6 +15,7 @@
 
 #include "tests/support/skip.h"
 #include "tests/support/temp_dir.h"
+#include "tests/tools/sonarloop_cli.h"
 
 using sonarloop::testing::run_command;
 using sonarloop::testing::slurp;
@@ -22,12 +23,13 @@ using sonarloop::testing::TempDir;
 
 namespace {
 
-const std::string kBinary = std::string(SONARLOOP_BINARY_DIR) + "/tools/sonarloop";
-const std::string kPython = SONARLOOP_PYTHON;
+using sonarloop::testing::kBinary;
+using sonarloop::testing::kPython;
+using sonarloop::testing::kRealXtf;
+
 const std::string kScript = std::string(SONARLOOP_SOURCE_DIR) + "/tools/xtf_stats.py";
-const std::string kRealXtf =
-    std::string(SONARLOOP_SOURCE_DIR) + "/tests/data/xtf/scotsman-iver2.xtf";
-const std::string kScenario = std::string(SONARLOOP_SOURCE_DIR) + "/config/realism_iver2.yaml";
+const std::string kRealismScenario =
+    std::string(SONARLOOP_SOURCE_DIR) + "/config/realism_iver2.yaml";
 
 void skip_without_numpy() {
   if (run_command(kPython + " -c 'import numpy' > /dev/null 2>&1") != 0) {
@@ -118,8 +120,9 @@ TEST_CASE("xtf_stats: the real recording and its rendered twin") {
 
   // the rendered dive: the preset's header, written and read back
   const std::string rec = dir.file("run");
-  REQUIRE(run_command(kBinary + " run " + kScenario + " --rate max --threads 2 --quiet --record " +
-                      rec + " > /dev/null 2> " + dir.file("run.err")) == 0);
+  REQUIRE(run_command(kBinary + " run " + kRealismScenario +
+                      " --rate max --threads 2 --quiet --record " + rec + " > /dev/null 2> " +
+                      dir.file("run.err")) == 0);
   const std::string sim = stats_json(dir, rec + "/pings.xtf", "sim");
   check_header(sim, 475);
   CHECK(values(sim, "nominal_samples") == std::vector<double>{1024, 1024});

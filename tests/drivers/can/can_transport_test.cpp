@@ -10,21 +10,11 @@
 #include "drivers/can/socketcan.h"
 #include "drivers/can/socketcand_client.h"
 #include "drivers/can/socketcand_server.h"
+#include "tests/drivers/can/nav_frame.h"
 #include "tests/support/temp_dir.h"
 
 using namespace sonarloop::can;
-
-namespace {
-
-CanFrame nav_frame() {
-  CanFrame f;
-  f.id = 0x09F80123;
-  f.len = 8;
-  f.data = {0x00, 0xE6, 0xB5, 0x23, 0xB1, 0xAC, 0x6A, 0x06};
-  return f;
-}
-
-}  // namespace
+using sonarloop::testing::nav_frame;
 
 TEST_CASE("can transport factory: none and log:FILE") {
   auto none = open_can_transport("none");

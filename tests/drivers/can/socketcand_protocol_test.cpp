@@ -3,20 +3,10 @@
 #include <catch2/catch.hpp>
 #include <string>
 
+#include "tests/drivers/can/nav_frame.h"
+
 using namespace sonarloop::can;
-
-namespace {
-
-CanFrame nav_frame() {
-  CanFrame f;
-  f.id = 0x09F80123;
-  f.extended = true;
-  f.len = 8;
-  f.data = {0x00, 0xE6, 0xB5, 0x23, 0xB1, 0xAC, 0x6A, 0x06};
-  return f;
-}
-
-}  // namespace
+using sonarloop::testing::nav_frame;
 
 TEST_CASE("socketcand: frame and send elements are formatted as docs/formats.md 4.4 shows") {
   char buf[128];

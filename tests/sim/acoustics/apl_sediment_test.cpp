@@ -2,29 +2,20 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 
 #include "sim/seabed/sediment.h"
+#include "tests/sim/acoustics/apl_sediment_by_key.h"
+#include "units/angles.h"
 
 using namespace sonarloop::acoustics;
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
+using sonarloop::kRadPerDeg;
 using sonarloop::seabed::find_sediment;
 using sonarloop::seabed::sediment_table;
-
-namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-AplSediment by_key(const char* key) {
-  const auto id = find_sediment(key);
-  REQUIRE(id.has_value());
-  return apl_sediment(*id);
-}
-
-}  // namespace
+using sonarloop::testing::apl_sediment_by_key;
 
 TEST_CASE("apl sediment: grain-size relations, sandy gravel and very fine sand (items 11, 12)") {
   const AplSediment g = apl_from_grain_size(-1.0);
@@ -76,7 +67,7 @@ TEST_CASE("apl sediment: every row of TR 9407 Table 2 as printed in docs/physics
   REQUIRE(sediment_table().size() == std::size(rows));
   for (const Row& r : rows) {
     INFO(r.key);
-    const AplSediment s = by_key(r.key);
+    const AplSediment s = apl_sediment_by_key(r.key);
     // tolerances: half a unit of the printed last digit
     CHECK_THAT(s.rho, WithinAbs(r.rho, 0.0005 + 1e-9));
     CHECK_THAT(s.nu, WithinAbs(r.nu, 0.00005 + 1e-9));
@@ -106,18 +97,18 @@ TEST_CASE("apl sediment: id validation, Mz clamping and c1 in Eq. 4") {
 }
 
 TEST_CASE("apl sediment: Rayleigh reflection and bottom loss (§2.3, item 13)") {
-  const AplSediment vfs = by_key("very_fine_sand");
-  const AplSediment gravel = by_key("sandy_gravel");
-  const AplSediment rough = by_key("rough_rock");
-  CHECK_THAT(std::abs(rayleigh_reflection(90.0 * kDeg, vfs)), WithinAbs(0.1454, 0.0005));
-  CHECK_THAT(std::abs(rayleigh_reflection(90.0 * kDeg, rough)), WithinAbs(0.7241, 0.0005));
-  CHECK_THAT(std::abs(rayleigh_reflection(90.0 * kDeg, gravel)), WithinAbs(0.5383, 0.0005));
-  CHECK_THAT(bottom_loss_db(10.0 * kDeg, vfs), WithinAbs(1.783, 0.0005));
-  CHECK_THAT(bottom_loss_db(30.0 * kDeg, vfs), WithinAbs(12.053, 0.0005));
-  CHECK_THAT(bottom_loss_db(90.0 * kDeg, vfs), WithinAbs(16.749, 0.0005));
-  CHECK_THAT(bottom_loss_db(30.0 * kDeg, gravel), WithinAbs(0.271, 0.0005));
-  CHECK_THAT(bottom_loss_db(90.0 * kDeg, gravel), WithinAbs(5.379, 0.0005));
-  CHECK_THAT(bottom_loss_db(90.0 * kDeg, rough), WithinAbs(2.804, 0.0005));
+  const AplSediment vfs = apl_sediment_by_key("very_fine_sand");
+  const AplSediment gravel = apl_sediment_by_key("sandy_gravel");
+  const AplSediment rough = apl_sediment_by_key("rough_rock");
+  CHECK_THAT(std::abs(rayleigh_reflection(90.0 * kRadPerDeg, vfs)), WithinAbs(0.1454, 0.0005));
+  CHECK_THAT(std::abs(rayleigh_reflection(90.0 * kRadPerDeg, rough)), WithinAbs(0.7241, 0.0005));
+  CHECK_THAT(std::abs(rayleigh_reflection(90.0 * kRadPerDeg, gravel)), WithinAbs(0.5383, 0.0005));
+  CHECK_THAT(bottom_loss_db(10.0 * kRadPerDeg, vfs), WithinAbs(1.783, 0.0005));
+  CHECK_THAT(bottom_loss_db(30.0 * kRadPerDeg, vfs), WithinAbs(12.053, 0.0005));
+  CHECK_THAT(bottom_loss_db(90.0 * kRadPerDeg, vfs), WithinAbs(16.749, 0.0005));
+  CHECK_THAT(bottom_loss_db(30.0 * kRadPerDeg, gravel), WithinAbs(0.271, 0.0005));
+  CHECK_THAT(bottom_loss_db(90.0 * kRadPerDeg, gravel), WithinAbs(5.379, 0.0005));
+  CHECK_THAT(bottom_loss_db(90.0 * kRadPerDeg, rough), WithinAbs(2.804, 0.0005));
   // grazing incidence is total reflection with a phase flip, R(0) = −1
   CHECK_THAT(rayleigh_reflection(0.0, vfs).real(), WithinAbs(-1.0, 1e-12));
   // below the critical angle a lossless fast bottom reflects totally
@@ -126,7 +117,7 @@ TEST_CASE("apl sediment: Rayleigh reflection and bottom loss (§2.3, item 13)") 
   const double critical = std::acos(1.0 / lossless.nu);
   CHECK_THAT(std::abs(rayleigh_reflection(0.5 * critical, lossless)), WithinAbs(1.0, 1e-12));
   // P is the principal root: non-negative real part, and Im P > 0 with loss
-  const auto p = apl_vertical_wavenumber(20.0 * kDeg, vfs);
+  const auto p = apl_vertical_wavenumber(20.0 * kRadPerDeg, vfs);
   CHECK(p.real() >= 0.0);
   CHECK(p.imag() > 0.0);
 }

@@ -4,13 +4,15 @@
 #include <cmath>
 #include <numbers>
 
+#include "units/angles.h"
+
 using namespace sonarloop::acoustics;
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
+using sonarloop::kRadPerDeg;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 // docs/physics.md §3 worked example: f = 100 kHz, c = 1500 m/s, l = 1 m
 constexpr double kLambda = 1500.0 / 100e3;
 constexpr double kLength = 1.0;
@@ -45,23 +47,23 @@ TEST_CASE("beam pattern: half-power points and first sidelobe (docs/physics.md �
 }
 
 TEST_CASE("beam pattern: worked numbers of docs/physics.md §3 (l 1 m, 100 kHz)") {
-  CHECK_THAT(line_array_pattern(0.2 * kDeg, kLength, kLambda), WithinAbs(0.91327, 5e-6));
-  CHECK_THAT(line_array_pattern(0.5 * kDeg, kLength, kLambda), WithinAbs(0.52919, 5e-6));
-  CHECK_THAT(line_array_pattern(1.0 * kDeg, kLength, kLambda), WithinAbs(-0.13442, 5e-6));
-  CHECK_THAT(line_array_pattern_db(0.2 * kDeg, kLength, kLambda), WithinAbs(-0.788, 5e-4));
-  CHECK_THAT(line_array_pattern_db(0.5 * kDeg, kLength, kLambda), WithinAbs(-5.528, 5e-4));
-  CHECK_THAT(line_array_pattern_db(1.0 * kDeg, kLength, kLambda), WithinAbs(-17.431, 5e-4));
-  CHECK_THAT(two_way_pattern_db(0.5 * kDeg, kLength, kLambda), WithinAbs(2.0 * -5.528, 1e-3));
+  CHECK_THAT(line_array_pattern(0.2 * kRadPerDeg, kLength, kLambda), WithinAbs(0.91327, 5e-6));
+  CHECK_THAT(line_array_pattern(0.5 * kRadPerDeg, kLength, kLambda), WithinAbs(0.52919, 5e-6));
+  CHECK_THAT(line_array_pattern(1.0 * kRadPerDeg, kLength, kLambda), WithinAbs(-0.13442, 5e-6));
+  CHECK_THAT(line_array_pattern_db(0.2 * kRadPerDeg, kLength, kLambda), WithinAbs(-0.788, 5e-4));
+  CHECK_THAT(line_array_pattern_db(0.5 * kRadPerDeg, kLength, kLambda), WithinAbs(-5.528, 5e-4));
+  CHECK_THAT(line_array_pattern_db(1.0 * kRadPerDeg, kLength, kLambda), WithinAbs(-17.431, 5e-4));
+  CHECK_THAT(two_way_pattern_db(0.5 * kRadPerDeg, kLength, kLambda), WithinAbs(2.0 * -5.528, 1e-3));
 
   const double bw = beamwidth_3db_one_way_rad(kLength, kLambda);
   CHECK_THAT(bw, WithinAbs(0.013288, 5e-7));
-  CHECK_THAT(bw / kDeg, WithinAbs(0.7614, 5e-5));
+  CHECK_THAT(bw / kRadPerDeg, WithinAbs(0.7614, 5e-5));
   CHECK_THAT(bw, WithinRel(0.885893 * kLambda / kLength, 1e-4));
   CHECK_THAT(line_array_pattern_db(bw / 2.0, kLength, kLambda), WithinAbs(-3.0103, 1e-4));
   const double bw2 = beamwidth_3db_two_way_rad(kLength, kLambda);
   CHECK_THAT(bw2, WithinRel(0.637833 * kLambda / kLength, 1e-4));
   CHECK_THAT(two_way_pattern_db(bw2 / 2.0, kLength, kLambda), WithinAbs(-3.0103, 1e-4));
-  CHECK_THAT(first_null_rad(kLength, kLambda) / kDeg, WithinAbs(0.8595, 5e-5));
+  CHECK_THAT(first_null_rad(kLength, kLambda) / kRadPerDeg, WithinAbs(0.8595, 5e-5));
   CHECK(line_array_pattern_db(first_null_rad(kLength, kLambda), kLength, kLambda) < -100.0);
   CHECK_THAT(directivity_index_line_db(kLength, kLambda), WithinAbs(21.25, 0.005));
   // short aperture: no -3 dB point, reported as omnidirectional
@@ -84,14 +86,14 @@ TEST_CASE("beam pattern: dB floor and rectangular piston DI") {
 }
 
 TEST_CASE("beam pattern: sidescan array two-way intensity is the product of both planes") {
-  const SidescanArray array{1.0, 0.05, 15.0 * kDeg};
+  const SidescanArray array{1.0, 0.05, 15.0 * kRadPerDeg};
   CHECK(array_pattern_two_way(array, kLambda, 0.0, 0.0) == 1.0);
-  for (double along : {0.0, 0.1 * kDeg, 0.37 * kDeg, 2.0 * kDeg}) {
-    for (double vert : {0.0, 5.0 * kDeg, 17.0 * kDeg, 40.0 * kDeg}) {
+  for (double along : {0.0, 0.1 * kRadPerDeg, 0.37 * kRadPerDeg, 2.0 * kRadPerDeg}) {
+    for (double vert : {0.0, 5.0 * kRadPerDeg, 17.0 * kRadPerDeg, 40.0 * kRadPerDeg}) {
       const double g = array_pattern_two_way(array, kLambda, along, vert);
       const double expected_db = two_way_pattern_db(along, array.length_m, kLambda) +
                                  two_way_pattern_db(vert, array.height_m, kLambda);
-      INFO("along " << along / kDeg << " deg, vertical " << vert / kDeg << " deg");
+      INFO("along " << along / kRadPerDeg << " deg, vertical " << vert / kRadPerDeg << " deg");
       if (expected_db > -150.0) {
         CHECK_THAT(10.0 * std::log10(g), WithinAbs(expected_db, 1e-9));
       }
@@ -102,5 +104,5 @@ TEST_CASE("beam pattern: sidescan array two-way intensity is the product of both
   // vertical -3 dB two-way half-width of a 5 cm aperture
   const double half = beamwidth_3db_two_way_rad(array.height_m, kLambda) / 2.0;
   CHECK_THAT(array_pattern_two_way(array, kLambda, 0.0, half), WithinAbs(0.5, 1e-12));
-  CHECK_THAT(vertical_off_axis_rad(array, 20.0 * kDeg), WithinAbs(5.0 * kDeg, 1e-15));
+  CHECK_THAT(vertical_off_axis_rad(array, 20.0 * kRadPerDeg), WithinAbs(5.0 * kRadPerDeg, 1e-15));
 }

@@ -8,21 +8,17 @@
 #include <vector>
 
 #include "sim/seabed/sediment.h"
+#include "tests/sim/acoustics/apl_sediment_by_key.h"
+#include "units/angles.h"
 
 using namespace sonarloop::acoustics;
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
+using sonarloop::kRadPerDeg;
 using sonarloop::seabed::find_sediment;
+using sonarloop::testing::apl_sediment_by_key;
 
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-AplSediment by_key(const char* key) {
-  const auto id = find_sediment(key);
-  REQUIRE(id.has_value());
-  return apl_sediment(*id);
-}
 
 // ∫_0^∞ J0(u)·exp(−q·u^(2α))·u du by Simpson's rule, cut where the exponential is e^-60.
 double kirchhoff_integral(double q, double alpha) {
@@ -69,23 +65,23 @@ TEST_CASE("apl backscatter: Kirchhoff constants a, b for gamma 3.25 (item 16)") 
 TEST_CASE("apl backscatter: closed-form Kirchhoff against the exact integral (item 16)") {
   // γ = 3: exact for every angle, ∫J0(u)e^(−qu)u du = q/(1+q²)^(3/2)
   {
-    AplSediment s = by_key("medium_sand");
+    AplSediment s = apl_sediment_by_key("medium_sand");
     s.gamma = 3.0;
     const AplBackscatterSetup setup = make_apl_backscatter_setup(30e3, s);
     for (double deg : {45.0, 60.0, 80.0, 89.0}) {
       INFO("gamma 3, " << deg << " deg");
-      CHECK_THAT(kirchhoff_sigma(deg * kDeg, setup),
-                 WithinRel(exact_kirchhoff_sigma(deg * kDeg, setup), 1e-6));
+      CHECK_THAT(kirchhoff_sigma(deg * kRadPerDeg, setup),
+                 WithinRel(exact_kirchhoff_sigma(deg * kRadPerDeg, setup), 1e-6));
     }
   }
   // γ = 3.25, θ >= 80°, where q(θ) >= 0.8: within 0.2 dB
   for (const auto& [key, freq] : {std::pair{"sandy_gravel", 100e3}, std::pair{"rock", 100e3},
                                   std::pair{"rough_rock", 30e3}}) {
-    const AplBackscatterSetup setup = make_apl_backscatter_setup(freq, by_key(key));
+    const AplBackscatterSetup setup = make_apl_backscatter_setup(freq, apl_sediment_by_key(key));
     for (double deg : {80.0, 82.5, 85.0, 87.5, 89.0, 89.9}) {
       INFO(key << " " << freq << " Hz, " << deg << " deg");
-      const double closed = kirchhoff_sigma(deg * kDeg, setup);
-      const double exact = exact_kirchhoff_sigma(deg * kDeg, setup);
+      const double closed = kirchhoff_sigma(deg * kRadPerDeg, setup);
+      const double exact = exact_kirchhoff_sigma(deg * kRadPerDeg, setup);
       CHECK(std::fabs(10.0 * std::log10(closed / exact)) < 0.2);
     }
   }
@@ -95,11 +91,11 @@ TEST_CASE("apl backscatter: closed-form Kirchhoff against the exact integral (it
   // here: within 1 dB at every angle from 40°, within 0.1 dB at 89.9°.
   for (const char* key : {"very_fine_sand", "medium_sand", "silty_clay", "cobble"}) {
     for (double freq : {10e3, 30e3, 100e3, 300e3}) {
-      const AplBackscatterSetup setup = make_apl_backscatter_setup(freq, by_key(key));
+      const AplBackscatterSetup setup = make_apl_backscatter_setup(freq, apl_sediment_by_key(key));
       for (double deg : {40.0, 60.0, 80.0, 85.0, 89.9}) {
         INFO(key << " " << freq << " Hz, " << deg << " deg");
-        const double err_db = 10.0 * std::log10(kirchhoff_sigma(deg * kDeg, setup) /
-                                                exact_kirchhoff_sigma(deg * kDeg, setup));
+        const double err_db = 10.0 * std::log10(kirchhoff_sigma(deg * kRadPerDeg, setup) /
+                                                exact_kirchhoff_sigma(deg * kRadPerDeg, setup));
         CHECK(std::fabs(err_db) < (deg >= 89.9 ? 0.1 : 1.0));
       }
     }
@@ -123,25 +119,25 @@ TEST_CASE("apl backscatter: Pailhas sediments, docs/physics.md §2.5(b), c1 1528
   const double freqs[3] = {30e3, 100e3, 200e3};
   const double angles[3] = {10.0, 30.0, 60.0};
   for (const Row& r : rows) {
-    const AplSediment s = by_key(r.key);
+    const AplSediment s = apl_sediment_by_key(r.key);
     for (int fi = 0; fi < 3; ++fi) {
       const AplBackscatterSetup setup = make_apl_backscatter_setup(freqs[fi], s, 1528.0);
       for (int ai = 0; ai < 3; ++ai) {
         INFO(r.key << " " << freqs[fi] << " Hz " << angles[ai] << " deg");
-        const double sb = apl_backscatter_db(angles[ai] * kDeg, setup);
+        const double sb = apl_backscatter_db(angles[ai] * kRadPerDeg, setup);
         CHECK_THAT(sb, WithinAbs(r.sb[fi][ai], 0.1));
         // c1 = 1500 moves the values by <= 0.07 dB (stated for the 10-100 kHz band)
         if (freqs[fi] <= 100e3) {
-          CHECK_THAT(apl_backscatter_db(angles[ai] * kDeg, freqs[fi], s, 1500.0),
+          CHECK_THAT(apl_backscatter_db(angles[ai] * kRadPerDeg, freqs[fi], s, 1500.0),
                      WithinAbs(sb, 0.07));
         }
       }
     }
   }
   // the two examples quoted in item 15
-  CHECK_THAT(apl_backscatter_db(30.0 * kDeg, 30e3, by_key("very_fine_sand")),
+  CHECK_THAT(apl_backscatter_db(30.0 * kRadPerDeg, 30e3, apl_sediment_by_key("very_fine_sand")),
              WithinAbs(-25.73, 0.1));
-  CHECK_THAT(apl_backscatter_db(30.0 * kDeg, 100e3, by_key("sandy_gravel")),
+  CHECK_THAT(apl_backscatter_db(30.0 * kRadPerDeg, 100e3, apl_sediment_by_key("sandy_gravel")),
              WithinAbs(-17.49, 0.1));
 }
 
@@ -158,7 +154,8 @@ TEST_CASE(
   };
   for (const Row& r : rows) {
     INFO(r.key << " " << r.freq_hz << " Hz");
-    const double sb = apl_backscatter_db(20.0 * kDeg, r.freq_hz, by_key(r.key), 1500.0);
+    const double sb =
+        apl_backscatter_db(20.0 * kRadPerDeg, r.freq_hz, apl_sediment_by_key(r.key), 1500.0);
     CHECK_THAT(sb, WithinAbs(r.doc_db, 1.0));
     CHECK_THAT(sb, WithinAbs(r.reimpl_db, 0.1));
   }
@@ -166,33 +163,35 @@ TEST_CASE(
 
 TEST_CASE("apl backscatter: component diagnostics (docs/physics.md §2.4, §2.5)") {
   // very fine sand at 30 kHz: small slope, volume term dominant at 30°, composite branch
-  const AplBackscatterSetup vfs = make_apl_backscatter_setup(30e3, by_key("very_fine_sand"));
+  const AplBackscatterSetup vfs =
+      make_apl_backscatter_setup(30e3, apl_sediment_by_key("very_fine_sand"));
   CHECK_THAT(vfs.slope_rms, WithinAbs(0.0370, 0.00005));
-  CHECK_THAT(10.0 * std::log10(volume_sigma(30.0 * kDeg, vfs)), WithinAbs(-25.8, 0.05));
-  CHECK(volume_sigma(30.0 * kDeg, vfs) > roughness_sigma(30.0 * kDeg, vfs));
+  CHECK_THAT(10.0 * std::log10(volume_sigma(30.0 * kRadPerDeg, vfs)), WithinAbs(-25.8, 0.05));
+  CHECK(volume_sigma(30.0 * kRadPerDeg, vfs) > roughness_sigma(30.0 * kRadPerDeg, vfs));
   CHECK(vfs.rough_weight > 0.999);
   // plus-b Kirchhoff peak at normal incidence
-  CHECK_THAT(apl_backscatter_db(90.0 * kDeg, vfs), WithinAbs(-3.84, 0.01));
+  CHECK_THAT(apl_backscatter_db(90.0 * kRadPerDeg, vfs), WithinAbs(-3.84, 0.01));
   // rough rock at 30 kHz: s = 1.86, large-roughness branch only
-  const AplBackscatterSetup rr = make_apl_backscatter_setup(30e3, by_key("rough_rock"));
+  const AplBackscatterSetup rr =
+      make_apl_backscatter_setup(30e3, apl_sediment_by_key("rough_rock"));
   CHECK_THAT(rr.slope_rms, WithinAbs(1.86, 0.005));
   CHECK(rr.rough_weight < 1e-12);
-  CHECK_THAT(roughness_sigma(30.0 * kDeg, rr),
-             WithinRel(large_roughness_sigma(30.0 * kDeg, rr), 1e-9));
+  CHECK_THAT(roughness_sigma(30.0 * kRadPerDeg, rr),
+             WithinRel(large_roughness_sigma(30.0 * kRadPerDeg, rr), 1e-9));
   // Kirchhoff is off below 40°; blends are complementary
-  CHECK(kirchhoff_sigma(39.9 * kDeg, vfs) == 0.0);
-  CHECK(kirchhoff_sigma(40.0 * kDeg, vfs) > 0.0);
+  CHECK(kirchhoff_sigma(39.9 * kRadPerDeg, vfs) == 0.0);
+  CHECK(kirchhoff_sigma(40.0 * kRadPerDeg, vfs) > 0.0);
   CHECK(apl_blend(-100.0) == 1.0 / (1.0 + std::exp(-40.0)));
   CHECK(apl_blend(0.0) == 0.5);
   CHECK_THAT(apl_blend(1.3) + apl_blend(-1.3), WithinAbs(1.0, 1e-15));
   // shadowing: none at steep angles, strong at grazing incidence
-  CHECK(shadowing_factor(30.0 * kDeg, 0.037) == 1.0);
-  CHECK(shadowing_factor(89.999 * kDeg, 1.86) == 1.0);
-  CHECK(shadowing_factor(0.5 * kDeg, 1.86) < 0.05);
-  CHECK(shadowing_factor(0.5 * kDeg, 1.86) > 0.0);
+  CHECK(shadowing_factor(30.0 * kRadPerDeg, 0.037) == 1.0);
+  CHECK(shadowing_factor(89.999 * kRadPerDeg, 1.86) == 1.0);
+  CHECK(shadowing_factor(0.5 * kRadPerDeg, 1.86) < 0.05);
+  CHECK(shadowing_factor(0.5 * kRadPerDeg, 1.86) > 0.0);
   // Bragg term vanishes at grazing 0 and the flat volume term is finite everywhere
   CHECK(bragg_sigma(0.0, vfs) == 0.0);
-  CHECK(std::isfinite(flat_volume_sigma(90.0 * kDeg, vfs)));
+  CHECK(std::isfinite(flat_volume_sigma(90.0 * kRadPerDeg, vfs)));
 }
 
 TEST_CASE("apl backscatter: ordering of Pailhas' sediments for grazing <= 60 deg") {
@@ -201,12 +200,12 @@ TEST_CASE("apl backscatter: ordering of Pailhas' sediments for grazing <= 60 deg
   for (double freq : {30e3, 100e3}) {
     std::vector<AplBackscatterSetup> setups;
     for (const char* key : order)
-      setups.push_back(make_apl_backscatter_setup(freq, by_key(key)));
+      setups.push_back(make_apl_backscatter_setup(freq, apl_sediment_by_key(key)));
     for (double deg = 1.0; deg <= 60.0; deg += 1.0) {
       for (std::size_t i = 1; i < setups.size(); ++i) {
         INFO(freq << " Hz, " << deg << " deg: " << order[i - 1] << " > " << order[i]);
-        CHECK(apl_backscatter_db(deg * kDeg, setups[i - 1]) >
-              apl_backscatter_db(deg * kDeg, setups[i]));
+        CHECK(apl_backscatter_db(deg * kRadPerDeg, setups[i - 1]) >
+              apl_backscatter_db(deg * kRadPerDeg, setups[i]));
       }
     }
   }
@@ -215,15 +214,15 @@ TEST_CASE("apl backscatter: ordering of Pailhas' sediments for grazing <= 60 deg
 TEST_CASE("apl backscatter: finite, continuous, clamped at 0.001 deg") {
   for (const char* key : {"rough_rock", "cobble", "medium_sand", "clay"}) {
     for (double freq : {10e3, 100e3, 300e3}) {
-      const AplBackscatterSetup setup = make_apl_backscatter_setup(freq, by_key(key));
-      CHECK(apl_backscatter_db(0.0, setup) == apl_backscatter_db(0.001 * kDeg, setup));
+      const AplBackscatterSetup setup = make_apl_backscatter_setup(freq, apl_sediment_by_key(key));
+      CHECK(apl_backscatter_db(0.0, setup) == apl_backscatter_db(0.001 * kRadPerDeg, setup));
       CHECK(std::isfinite(apl_backscatter_db(0.0, setup)));
-      CHECK(std::isfinite(apl_backscatter_db(90.0 * kDeg, setup)));
+      CHECK(std::isfinite(apl_backscatter_db(90.0 * kRadPerDeg, setup)));
       // no jumps: the steepest natural slope here (sin⁴ at 1°) is ~0.17 dB per 0.01°
-      double prev = apl_backscatter_db(1.0 * kDeg, setup);
+      double prev = apl_backscatter_db(1.0 * kRadPerDeg, setup);
       double worst = 0.0;
       for (int i = 1; i <= 8900; ++i) {
-        const double v = apl_backscatter_db((1.0 + 0.01 * i) * kDeg, setup);
+        const double v = apl_backscatter_db((1.0 + 0.01 * i) * kRadPerDeg, setup);
         worst = std::max(worst, std::fabs(v - prev));
         prev = v;
       }
@@ -234,7 +233,7 @@ TEST_CASE("apl backscatter: finite, continuous, clamped at 0.001 deg") {
 }
 
 TEST_CASE("apl backscatter: invalid setup is rejected with a clear message") {
-  AplSediment s = by_key("medium_sand");
+  AplSediment s = apl_sediment_by_key("medium_sand");
   CHECK_THROWS_AS(make_apl_backscatter_setup(0.0, s), std::invalid_argument);
   CHECK_THROWS_AS(make_apl_backscatter_setup(30e3, s, -1.0), std::invalid_argument);
   s.gamma = 4.0;

@@ -5,19 +5,17 @@
 #include <numbers>
 
 #include "sim/acoustics/beam_pattern.h"
+#include "units/angles.h"
 
 using namespace sonarloop::acoustics;
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
-
-namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
-}
+using sonarloop::kRadPerDeg;
 
 TEST_CASE("geometry: ranges, grazing angle and resolutions (docs/physics.md §3, item 21)") {
   CHECK_THAT(ground_range_m(50.0, 10.0), WithinAbs(48.9898, 5e-5));
   const double grazing = grazing_angle_rad(50.0, 10.0);
-  CHECK_THAT(grazing / kDeg, WithinAbs(11.537, 5e-4));
+  CHECK_THAT(grazing / kRadPerDeg, WithinAbs(11.537, 5e-4));
   const double dr = range_resolution_cw_m(100e-6, 1500.0);
   CHECK_THAT(dr, WithinAbs(0.0750, 1e-12));
   CHECK_THAT(ground_range_resolution_m(dr, grazing), WithinAbs(0.07655, 5e-6));

@@ -9,13 +9,15 @@
 #include <memory>
 
 #include "config/loader/sonar_loader.h"
+#include "tests/sim/render/level_pose.h"
 
 using namespace sonarloop;
 using namespace sonarloop::render;
+using sonarloop::testing::kFlatSeabedDepth_m;
+using sonarloop::testing::level_pose;
 
 namespace {
 
-constexpr double kDepth = 20.0;
 constexpr double kBin_m = 0.05;
 
 // a flat medium-sand seabed with, optionally, a 0.7 x 0.7 x 0.4 m box whose near face is at
@@ -23,7 +25,7 @@ constexpr double kBin_m = 0.05;
 scene::SceneDesc box_scene(bool with_box, double x_near) {
   scene::SceneDesc d;
   d.seed = 3;
-  d.water.depth_m = kDepth;
+  d.water.depth_m = kFlatSeabedDepth_m;
   d.seabed.origin_m = Vec2(-60, -60);
   d.seabed.extent_m = Vec2(120, 120);
   d.seabed.grid_spacing_m = 0.05;
@@ -39,12 +41,6 @@ scene::SceneDesc box_scene(bool with_box, double x_near) {
     d.targets = {box};
   }
   return d;
-}
-
-Pose level_pose(double altitude) {
-  Pose p;
-  p.position_W = Vec3(0.0, 0.0, kDepth - altitude);
-  return p;
 }
 
 // the default sonar: 5 cm bins, a pulse one bin long (so a label is its own bin's)

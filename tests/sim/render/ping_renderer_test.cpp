@@ -10,18 +10,19 @@
 #include "sim/acoustics/beam_pattern.h"
 #include "sim/acoustics/bottom_backscatter_apl.h"
 #include "sim/acoustics/spreading.h"
+#include "tests/sim/render/level_pose.h"
 
 using namespace sonarloop;
 using namespace sonarloop::render;
+using sonarloop::testing::kFlatSeabedDepth_m;
+using sonarloop::testing::level_pose;
 
 namespace {
-
-constexpr double kDepth = 20.0;
 
 scene::SceneDesc flat_scene(const char* sediment, double spacing = 0.05) {
   scene::SceneDesc d;
   d.seed = 3;
-  d.water.depth_m = kDepth;
+  d.water.depth_m = kFlatSeabedDepth_m;
   d.seabed.origin_m = Vec2(-60, -60);
   d.seabed.extent_m = Vec2(120, 120);
   d.seabed.grid_spacing_m = spacing;
@@ -44,13 +45,6 @@ SonarDesc test_sonar() {
   s.speckle = false;
   s.noise = false;
   return s;
-}
-
-Pose level_pose(double altitude, double heading_deg = 0.0) {
-  Pose p;
-  p.position_W = Vec3(0.0, 0.0, kDepth - altitude);
-  p.yaw = heading_deg * std::numbers::pi / 180.0;
-  return p;
 }
 
 double db(double x) {

@@ -5,17 +5,16 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <numbers>
 
 #include "sim/render/chip_renderer.h"
 #include "sim/render/raytrace_renderer.h"
+#include "units/angles.h"
 
 using namespace sonarloop;
 using namespace sonarloop::render;
+using sonarloop::kRadPerDeg;
 
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 scene::SceneDesc seabed_scene(const std::string& kind) {
   scene::SceneDesc d = builtin_dataset_seabed(kind).desc;
@@ -29,7 +28,7 @@ scene::SceneDesc seabed_scene(const std::string& kind) {
   return d;
 }
 
-SonarDesc strip_sonar(double bin_m = 0.05) {
+SonarDesc noiseless_strip_sonar(double bin_m = 0.05) {
   SonarDesc s;
   s.frequency_hz = 300e3;
   s.array_length_m = 0.5;
@@ -89,7 +88,7 @@ struct Errors {
 
 Errors errors_against_reference(const scene::Scene& sc, const std::vector<Pose>& poses,
                                 bool check_targets) {
-  const SonarSetup setup = make_sonar_setup(strip_sonar(), sc.desc().water);
+  const SonarSetup setup = make_sonar_setup(noiseless_strip_sonar(), sc.desc().water);
   Fidelity ref_f = default_fidelity(setup);
   ref_f.rays_per_bin = 8;
   ref_f.along_track_rays = 4;
@@ -158,9 +157,9 @@ TEST_CASE("profile renderer: pitched, rolled and yawed, as close to the referenc
        {std::tuple{5.0, 0.0, 0.0}, {0.0, 8.0, 0.0}, {-4.0, -6.0, 30.0}, {3.0, 10.0, 200.0}}) {
     Pose pose;
     pose.position_W = Vec3(0.0, 0.0, sc.desc().water.depth_m - 6.0);
-    pose.pitch = pitch * kDeg;
-    pose.roll = roll * kDeg;
-    pose.yaw = yaw * kDeg;
+    pose.pitch = pitch * kRadPerDeg;
+    pose.roll = roll * kRadPerDeg;
+    pose.yaw = yaw * kRadPerDeg;
     const Errors e = errors_against_reference(sc, {pose}, false);
     INFO("pitch " << pitch << " roll " << roll << " yaw " << yaw << ": RMS profile "
                   << e.profile_rms << " dB, raytrace " << e.raytrace_rms << " dB; lit/dark profile "
@@ -171,7 +170,7 @@ TEST_CASE("profile renderer: pitched, rolled and yawed, as close to the referenc
 
 TEST_CASE("profile renderer: a range window renders the same bins as the whole line") {
   const scene::Scene sc(seabed_scene("clutter"));
-  const SonarSetup setup = make_sonar_setup(strip_sonar(), sc.desc().water);
+  const SonarSetup setup = make_sonar_setup(noiseless_strip_sonar(), sc.desc().water);
   const ProfileRenderer prof(setup, default_fidelity(setup));
   Pose pose;
   pose.position_W = Vec3(0.2, 0.0, sc.desc().water.depth_m - 5.0);
@@ -205,7 +204,7 @@ TEST_CASE("profile renderer: coarse pixels read a coarser level of the same surf
   // wavelength has gentler slopes between lattice points: docs/rendering.md, "Level of detail")
   for (const std::string kind : {"flat", "ripples", "rocky"}) {
     const scene::Scene sc(seabed_scene(kind));
-    const SonarSetup setup = make_sonar_setup(strip_sonar(0.3), sc.desc().water);
+    const SonarSetup setup = make_sonar_setup(noiseless_strip_sonar(0.3), sc.desc().water);
     const Fidelity coarse = default_fidelity(setup);
     REQUIRE(march_plan(coarse, 0.025, 0.3).level == 2);
     Fidelity fine = coarse;

@@ -11,12 +11,8 @@ using namespace sonarloop::targets;
 using sonarloop::Vec2;
 using sonarloop::Vec3;
 
-namespace {
-constexpr double kPi = std::numbers::pi;
-}
-
 TEST_CASE("placement: heading 90 degrees points the long axis east, z stays down") {
-  const Eigen::Isometry3d X_WT = target_pose(Vec2(10.0, -5.0), kPi / 2.0, 30.0);
+  const Eigen::Isometry3d X_WT = target_pose(Vec2(10.0, -5.0), std::numbers::pi / 2.0, 30.0);
   const Eigen::Matrix3d R = X_WT.linear();
   CHECK((R * Vec3::UnitX() - Vec3(0, 1, 0)).norm() < 1e-12);   // x_T -> east
   CHECK((R * Vec3::UnitY() - Vec3(-1, 0, 0)).norm() < 1e-12);  // y_T (right) -> south
@@ -27,7 +23,7 @@ TEST_CASE("placement: heading 90 degrees points the long axis east, z stays down
 
 TEST_CASE("placement: heading 0 is the identity rotation; other headings follow frames.h") {
   CHECK(target_pose(Vec2::Zero(), 0.0, 0.0).linear().isIdentity(1e-15));
-  for (double h : {0.3, 1.2, kPi, -2.0, 5.5}) {
+  for (double h : {0.3, 1.2, std::numbers::pi, -2.0, 5.5}) {
     const Eigen::Matrix3d R = target_pose(Vec2(1, 2), h, 3).linear();
     const Vec2 heading = sonarloop::heading_vector(h);
     CHECK((R * Vec3::UnitX() - Vec3(heading.x(), heading.y(), 0.0)).norm() < 1e-12);
@@ -38,7 +34,8 @@ TEST_CASE("placement: heading 0 is the identity rotation; other headings follow 
 TEST_CASE("placement: a placed cuboid occupies the expected world box") {
   // 1.0 x 0.3 x 0.3 cuboid, heading east, footprint centre (10, -5), base plane 30 m down
   const TriangleMesh m_T = build_target_mesh(TargetType::kCuboid, Vec3::Zero());
-  const TriangleMesh m_W = transformed(m_T, target_pose(Vec2(10.0, -5.0), kPi / 2.0, 30.0));
+  const TriangleMesh m_W =
+      transformed(m_T, target_pose(Vec2(10.0, -5.0), std::numbers::pi / 2.0, 30.0));
   const auto box = mesh_bounds(m_W);
   CHECK((box.min() - Vec3(9.85, -5.5, 29.7)).norm() < 1e-5);
   CHECK((box.max() - Vec3(10.15, -4.5, 30.0)).norm() < 1e-5);

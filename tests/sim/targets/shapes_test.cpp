@@ -17,8 +17,6 @@ using sonarloop::Vec3;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // Checks the mesh of `type` at size_m (0 = nominal) against the frame convention of shapes.h:
 // closed, outward, convex, bounds = [−L/2, L/2] × [−W/2, W/2] × [−H, 0] within 1 % of each
 // dimension, volume within volume_tolerance (1 %) of the analytic value. Returns the relative
@@ -69,15 +67,19 @@ TEST_CASE("shapes: analytic volumes at nominal size") {
   const Vec3 z = Vec3::Zero();
   // frustum πh(R² + Rr + r²)/3 with R = 0.49, r = 0.245, h = 0.47
   CHECK(nominal_volume_m3(TargetType::kManta, z) ==
-        Approx(kPi * 0.47 * (0.49 * 0.49 + 0.49 * 0.245 + 0.245 * 0.245) / 3.0).epsilon(1e-12));
-  CHECK(nominal_volume_m3(TargetType::kCylinder, z) == Approx(kPi * 0.15 * 0.15 * 1.0));
-  CHECK(nominal_volume_m3(TargetType::kStandingCylinder, z) == Approx(kPi * 0.15 * 0.15 * 1.0));
+        Approx(std::numbers::pi * 0.47 * (0.49 * 0.49 + 0.49 * 0.245 + 0.245 * 0.245) / 3.0)
+            .epsilon(1e-12));
+  CHECK(nominal_volume_m3(TargetType::kCylinder, z) ==
+        Approx(std::numbers::pi * 0.15 * 0.15 * 1.0));
+  CHECK(nominal_volume_m3(TargetType::kStandingCylinder, z) ==
+        Approx(std::numbers::pi * 0.15 * 0.15 * 1.0));
   CHECK(nominal_volume_m3(TargetType::kCuboid, z) == Approx(1.0 * 0.3 * 0.3));
   CHECK(nominal_volume_m3(TargetType::kLargeCuboid, z) == Approx(1.0 * 0.5 * 0.4));
   CHECK(nominal_volume_m3(TargetType::kBox, z) == Approx(0.7 * 0.7 * 0.4));
-  CHECK(nominal_volume_m3(TargetType::kHemisphere, z) == Approx(2.0 / 3.0 * kPi * 0.125));
+  CHECK(nominal_volume_m3(TargetType::kHemisphere, z) ==
+        Approx(2.0 / 3.0 * std::numbers::pi * 0.125));
   CHECK(nominal_volume_m3(TargetType::kSmallHemisphere, z) ==
-        Approx(2.0 / 3.0 * kPi * 0.25 * 0.25 * 0.25));
+        Approx(2.0 / 3.0 * std::numbers::pi * 0.25 * 0.25 * 0.25));
   CHECK(nominal_volume_m3(TargetType::kRockan, z) == Approx(kRockanNominalVolumeM3));
 }
 

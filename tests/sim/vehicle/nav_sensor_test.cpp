@@ -13,28 +13,14 @@
 #include "common/rng.h"
 #include "sim/vehicle/angles.h"
 #include "sim/vehicle/trajectory.h"
+#include "tests/sim/vehicle/sample_moments.h"
 
 using namespace sonarloop;
 using namespace sonarloop::vehicle;
+using sonarloop::testing::sample_moments;
+using sonarloop::testing::SampleMoments;
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-
-struct Moments {
-  double mean = 0.0;
-  double sd = 0.0;
-};
-
-Moments moments(const std::vector<double>& v) {
-  double sum = 0.0, sum2 = 0.0;
-  for (double x : v)
-    sum += x;
-  const double mean = sum / static_cast<double>(v.size());
-  for (double x : v)
-    sum2 += (x - mean) * (x - mean);
-  return {mean, std::sqrt(sum2 / static_cast<double>(v.size() - 1))};
-}
 
 // A trajectory with turns, sway, terrain following and roll: every field of the state moves.
 Trajectory busy_trajectory() {
@@ -199,7 +185,7 @@ TEST_CASE("white noise has the configured standard deviation", "[vehicle][nav]")
         Case{"pitch", &pitch, 0.002}, Case{"roll", &roll, 0.002}, Case{"yaw rate", &rate, 0.001},
         Case{"depth", &depth, 0.05}, Case{"altitude", &altitude, 0.1},
         Case{"speed", &speed, 0.03}}) {
-    const Moments m = moments(*c.v);
+    const SampleMoments m = sample_moments(*c.v);
     std::printf("white %-8s sd %.6g (configured %.6g, ratio %.4f), mean %+.2g\n", c.name, m.sd,
                 c.sd, m.sd / c.sd, m.mean);
     CHECK(m.sd / c.sd == Approx(1.0).epsilon(0.05));
@@ -214,7 +200,7 @@ TEST_CASE("heading bias, random-walk drift and speed scale factor", "[vehicle][n
     d.heading_noise_sd = 0.005;
     const NavSensorModel nav(d, 3);
     VehicleState truth;
-    truth.pose.yaw = -kPi + 0.01;  // the bias wraps the published heading past π
+    truth.pose.yaw = -std::numbers::pi + 0.01;  // the bias wraps the published heading past π
     truth.velocity_W = Vec3(-2.0, 0.0, 0.0);
     truth.speed_m_s = 2.0;
     std::vector<double> heading, course;
@@ -224,8 +210,8 @@ TEST_CASE("heading bias, random-walk drift and speed scale factor", "[vehicle][n
       heading.push_back(s.error.heading);
       course.push_back(s.error.course);
     }
-    CHECK(moments(heading).mean == Approx(0.02).margin(4 * 0.005 / 100.0));
-    CHECK(moments(course).mean == Approx(0.02).margin(4 * 0.005 / 100.0));
+    CHECK(sample_moments(heading).mean == Approx(0.02).margin(4 * 0.005 / 100.0));
+    CHECK(sample_moments(course).mean == Approx(0.02).margin(4 * 0.005 / 100.0));
   }
 
   SECTION("drift variance grows linearly with time") {
@@ -245,8 +231,9 @@ TEST_CASE("heading bias, random-walk drift and speed scale factor", "[vehicle][n
       }
       const double expected_position = 0.1 * 0.1 * t_s;
       const double expected_heading = 1e-6 * t_s;
-      const double vn = std::pow(moments(north).sd, 2), ve = std::pow(moments(east).sd, 2);
-      const double vh = std::pow(moments(heading).sd, 2);
+      const double vn = std::pow(sample_moments(north).sd, 2),
+                   ve = std::pow(sample_moments(east).sd, 2);
+      const double vh = std::pow(sample_moments(heading).sd, 2);
       std::printf("drift t = %5.0f s: var north/expected %.3f, east %.3f, heading %.3f\n", t_s,
                   vn / expected_position, ve / expected_position, vh / expected_heading);
       CHECK(vn / expected_position == Approx(1.0).epsilon(0.1));

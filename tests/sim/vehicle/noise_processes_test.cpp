@@ -5,25 +5,14 @@
 #include <cstdio>
 #include <vector>
 
+#include "tests/sim/vehicle/sample_moments.h"
+
 using namespace sonarloop;
 using namespace sonarloop::vehicle;
+using sonarloop::testing::sample_moments;
+using sonarloop::testing::SampleMoments;
 
 namespace {
-
-struct Moments {
-  double mean = 0.0;
-  double variance = 0.0;
-};
-
-Moments moments(const std::vector<double>& v) {
-  double sum = 0.0, sum2 = 0.0;
-  for (double x : v)
-    sum += x;
-  const double mean = sum / static_cast<double>(v.size());
-  for (double x : v)
-    sum2 += (x - mean) * (x - mean);
-  return {mean, sum2 / static_cast<double>(v.size() - 1)};
-}
 
 constexpr SimTime kSecond = kNanosecondsPerSecond;
 
@@ -34,7 +23,7 @@ TEST_CASE("white noise is standard normal and held within a step", "[vehicle][no
   std::vector<double> v;
   for (SimTime k = -5000; k < 45000; ++k)
     v.push_back(hashed_white_noise(7, NavChannel::kNorth, k * step, step));
-  const Moments m = moments(v);
+  const SampleMoments m = sample_moments(v);
   std::printf("white noise: mean %.4f sd %.4f over %zu steps\n", m.mean, std::sqrt(m.variance),
               v.size());
   CHECK(std::abs(m.mean) < 0.02);
@@ -75,7 +64,7 @@ TEST_CASE("the Wiener process starts at zero and its variance grows linearly wit
       v.push_back(hashed_wiener(static_cast<std::uint64_t>(seed), NavChannel::kNorth,
                                 static_cast<SimTime>(t_s) * kSecond, step));
     }
-    const Moments m = moments(v);
+    const SampleMoments m = sample_moments(v);
     std::printf("wiener: t = %7.0f s  mean %+.3f·sqrt(t)  var/t %.4f\n", t_s,
                 m.mean / std::sqrt(t_s), m.variance / t_s);
     CHECK(std::abs(m.mean) < 4.0 * std::sqrt(t_s / seeds));
@@ -91,8 +80,8 @@ TEST_CASE("the Wiener process starts at zero and its variance grows linearly wit
     d1.push_back(w400 - w100);
     d2.push_back(w500 - w400);
   }
-  CHECK(moments(d1).variance / 300.0 == Approx(1.0).epsilon(0.1));
-  CHECK(moments(d2).variance / 100.0 == Approx(1.0).epsilon(0.1));
+  CHECK(sample_moments(d1).variance / 300.0 == Approx(1.0).epsilon(0.1));
+  CHECK(sample_moments(d2).variance / 100.0 == Approx(1.0).epsilon(0.1));
   double cov = 0.0;
   for (int i = 0; i < seeds; ++i)
     cov += d1[static_cast<std::size_t>(i)] * d2[static_cast<std::size_t>(i)];

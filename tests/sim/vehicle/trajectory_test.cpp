@@ -9,17 +9,13 @@
 #include <vector>
 
 #include "sim/vehicle/angles.h"
+#include "units/angles.h"
 
 using namespace sonarloop;
 using namespace sonarloop::vehicle;
+using sonarloop::kRadPerDeg;
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-
-double deg(double d) {
-  return d * kPi / 180.0;
-}
 
 SimTime at_s(double t_s) {
   return from_seconds(t_s);
@@ -41,7 +37,7 @@ TrajectoryDesc lawnmower_desc(double spacing_m) {
   desc.speed_m_s = 2.0;
   desc.max_turn_rate_rad_s = 0.1;  // R = 20 m
   desc.lawnmower.origin = {0.0, 0.0};
-  desc.lawnmower.first_leg_heading = deg(20.0);
+  desc.lawnmower.first_leg_heading = 20.0 * kRadPerDeg;
   desc.lawnmower.leg_length_m = 200.0;
   desc.lawnmower.line_spacing_m = spacing_m;
   desc.lawnmower.legs = 4;
@@ -52,7 +48,7 @@ TrajectoryDesc lawnmower_desc(double spacing_m) {
 // A synthetic sinusoidal seabed along north: depth 30 + a·sin(2π·north / wavelength).
 SeabedDepthFn sinusoid(double amplitude_m, double wavelength_m) {
   return [=](double north_m, double) {
-    return 30.0 + amplitude_m * std::sin(2.0 * kPi * north_m / wavelength_m);
+    return 30.0 + amplitude_m * std::sin(2.0 * std::numbers::pi * north_m / wavelength_m);
   };
 }
 
@@ -76,7 +72,7 @@ TEST_CASE("straight line: position and heading at known times", "[vehicle][traje
   TrajectoryDesc desc;
   desc.kind = TrajectoryKind::kStraight;
   desc.start = {100.0, -50.0};
-  desc.start_heading = deg(30.0);
+  desc.start_heading = 30.0 * kRadPerDeg;
   desc.straight_length_m = 500.0;
   desc.speed_m_s = 2.0;
   desc.depth.depth_m = 15.0;
@@ -86,14 +82,14 @@ TEST_CASE("straight line: position and heading at known times", "[vehicle][traje
 
   const VehicleState s = tr.state_at(at_s(10.0));
   CHECK(s.t == at_s(10.0));
-  CHECK(s.pose.position_W.x() == Approx(100.0 + 20.0 * std::cos(deg(30.0))).epsilon(1e-12));
-  CHECK(s.pose.position_W.y() == Approx(-50.0 + 20.0 * std::sin(deg(30.0))).epsilon(1e-12));
+  CHECK(s.pose.position_W.x() == Approx(100.0 + 20.0 * std::cos(30.0 * kRadPerDeg)).epsilon(1e-12));
+  CHECK(s.pose.position_W.y() == Approx(-50.0 + 20.0 * std::sin(30.0 * kRadPerDeg)).epsilon(1e-12));
   CHECK(s.pose.position_W.z() == 15.0);
-  CHECK(s.pose.yaw == Approx(deg(30.0)).epsilon(1e-14));
+  CHECK(s.pose.yaw == Approx(30.0 * kRadPerDeg).epsilon(1e-14));
   CHECK(s.pose.pitch == 0.0);
   CHECK(s.pose.roll == 0.0);
-  CHECK(s.velocity_W.x() == Approx(2.0 * std::cos(deg(30.0))));
-  CHECK(s.velocity_W.y() == Approx(2.0 * std::sin(deg(30.0))));
+  CHECK(s.velocity_W.x() == Approx(2.0 * std::cos(30.0 * kRadPerDeg)));
+  CHECK(s.velocity_W.y() == Approx(2.0 * std::sin(30.0 * kRadPerDeg)));
   CHECK(s.velocity_W.z() == 0.0);
   CHECK(s.speed_m_s == Approx(2.0));
   CHECK(s.yaw_rate == 0.0);
@@ -102,11 +98,11 @@ TEST_CASE("straight line: position and heading at known times", "[vehicle][traje
   CHECK(s.leg == -1);
 
   const VehicleState end = tr.state_at(at_s(250.0));
-  CHECK(end.pose.position_W.x() == Approx(100.0 + 500.0 * std::cos(deg(30.0))));
+  CHECK(end.pose.position_W.x() == Approx(100.0 + 500.0 * std::cos(30.0 * kRadPerDeg)));
   // past the end the vehicle keeps going straight
   const VehicleState after = tr.state_at(at_s(260.0));
-  CHECK(after.pose.position_W.y() == Approx(-50.0 + 520.0 * std::sin(deg(30.0))));
-  CHECK(after.pose.yaw == Approx(deg(30.0)));
+  CHECK(after.pose.position_W.y() == Approx(-50.0 + 520.0 * std::sin(30.0 * kRadPerDeg)));
+  CHECK(after.pose.yaw == Approx(30.0 * kRadPerDeg));
 
   // with a seabed, the altitude is known along the path
   const Trajectory over(desc, [](double, double) { return 40.0; });
@@ -120,7 +116,7 @@ TEST_CASE("waypoints are passed and the turn rate never exceeds the bound",
   TrajectoryDesc desc;
   desc.kind = TrajectoryKind::kWaypoints;
   desc.start = {0.0, 0.0};
-  desc.start_heading = deg(-40.0);
+  desc.start_heading = -40.0 * kRadPerDeg;
   desc.speed_m_s = 1.5;
   desc.max_turn_rate_rad_s = 0.08;  // R = 18.75 m
   desc.waypoints = {{150.0, 20.0}, {160.0, 160.0}, {20.0, 150.0}, {30.0, 140.0}, {-80.0, -60.0}};
@@ -167,7 +163,7 @@ TEST_CASE("lawnmower legs, spacing, lengths and U-turn timing", "[vehicle][traje
     const double turn = u_turn_length_m(spacing, radius);
     CHECK(tr.duration_s() == Approx((4 * 200.0 + 3 * turn) / 2.0));
 
-    const Vec2 along = heading_vector(deg(20.0));
+    const Vec2 along = heading_vector(20.0 * kRadPerDeg);
     const Vec2 across(-along.y(), along.x());
     const double dt = 0.05;
     const auto states = sample(tr, dt);
@@ -186,7 +182,8 @@ TEST_CASE("lawnmower legs, spacing, lengths and U-turn timing", "[vehicle][traje
       CHECK(p.dot(across) == Approx(spacing * s.leg).margin(1e-9));
       CHECK(p.dot(along) >= -1e-9);
       CHECK(p.dot(along) <= 200.0 + 1e-9);
-      CHECK(wrap_to_pi(s.pose.yaw - deg(20.0) - (s.leg % 2) * kPi) == Approx(0.0).margin(1e-12));
+      CHECK(wrap_to_pi(s.pose.yaw - 20.0 * kRadPerDeg - (s.leg % 2) * std::numbers::pi) ==
+            Approx(0.0).margin(1e-12));
     }
     for (double t : leg_time)
       CHECK(t == Approx(100.0).margin(dt * 1.01));  // 200 m at 2 m/s
@@ -237,7 +234,7 @@ TEST_CASE("terrain following over a sinusoidal seabed", "[vehicle][trajectory]")
       max_w = std::max(max_w, std::abs(s.velocity_W.z()));
       // altitude as stated equals the seabed below minus the depth
       CHECK(s.altitude_m ==
-            Approx(30.0 + 3.0 * std::sin(2.0 * kPi * s.pose.position_W.x() / 100.0) -
+            Approx(30.0 + 3.0 * std::sin(2.0 * std::numbers::pi * s.pose.position_W.x() / 100.0) -
                    s.pose.position_W.z())
                 .margin(2e-3));
     }
@@ -353,7 +350,7 @@ TEST_CASE("position and attitude are continuous", "[vehicle][trajectory]") {
 
   // bounds on the rates of change: speed with sway, turn rate + sway yaw rate, pitch rate from
   // the vertical acceleration bound, roll rate from the lag
-  const double omega = 2.0 * kPi / 7.0;
+  const double omega = 2.0 * std::numbers::pi / 7.0;
   const double max_speed = std::hypot(2.0 + 0.1 * 0.8 + 0.8 * omega, 0.5);
   const double max_yaw_rate = 0.1 + 0.5 * 0.8 * omega * omega / 2.0;
   const double max_pitch_rate = 2.0 * 2.0 * 0.5 / 5.0 / 2.0;
@@ -392,17 +389,17 @@ TEST_CASE("position and attitude are continuous", "[vehicle][trajectory]") {
 
 TEST_CASE("sway offsets the vehicle sideways", "[vehicle][trajectory]") {
   TrajectoryDesc desc;
-  desc.start_heading = deg(90.0);  // east
+  desc.start_heading = 90.0 * kRadPerDeg;  // east
   desc.speed_m_s = 2.0;
   desc.sway = {1.5, 8.0, 0.0, 0.0};
   const Trajectory crab(desc);
   const VehicleState s = crab.state_at(at_s(2.0));  // quarter period: full starboard offset
   CHECK(s.pose.position_W.y() == Approx(4.0));
   CHECK(s.pose.position_W.x() == Approx(-1.5));       // starboard of east is south
-  CHECK(s.pose.yaw == Approx(deg(90.0)));             // pure sway: the heading stays on the path
+  CHECK(s.pose.yaw == Approx(90.0 * kRadPerDeg));     // pure sway: the heading stays on the path
   const VehicleState mid = crab.state_at(at_s(4.0));  // crossing back: lateral speed -A·ω
-  CHECK(mid.velocity_W.x() == Approx(1.5 * 2.0 * kPi / 8.0));
-  CHECK(mid.speed_m_s == Approx(std::hypot(2.0, 1.5 * 2.0 * kPi / 8.0)));
+  CHECK(mid.velocity_W.x() == Approx(1.5 * 2.0 * std::numbers::pi / 8.0));
+  CHECK(mid.speed_m_s == Approx(std::hypot(2.0, 1.5 * 2.0 * std::numbers::pi / 8.0)));
 
   desc.sway.yaw_coupling = 1.0;  // snaking: the heading follows the track
   const Trajectory snake(desc);

@@ -13,26 +13,17 @@
 # (test_NAME_may_skip), so that their skip (exit 77) shows as skipped without ending the file's
 # other cases.
 
-# The precompiled header every test executable reuses: compiled once, with the flags of the tests
-# (and, with SONARLOOP_TESTS_O0, once more with the library flags for the compute-heavy folders).
+# The precompiled header every test executable reuses: compiled once, with the flags of the tests.
 function(sonarloop_add_test_pch)
-  foreach(pch sonarloop_test_pch sonarloop_test_pch_optimised)
-    if(pch STREQUAL sonarloop_test_pch_optimised AND NOT SONARLOOP_TESTS_O0)
-      continue()
-    endif()
-    add_library(${pch} OBJECT ${PROJECT_SOURCE_DIR}/tests/support/test_pch.cpp)
-    target_link_libraries(${pch} PRIVATE Catch2::Catch2 Eigen3::Eigen)
-    target_include_directories(${pch} PRIVATE ${PROJECT_SOURCE_DIR})
-    sonarloop_test_settings(${pch})
-    target_precompile_headers(${pch} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support/test_pch.h)
-  endforeach()
+  add_library(sonarloop_test_pch OBJECT ${PROJECT_SOURCE_DIR}/tests/support/test_pch.cpp)
+  target_link_libraries(sonarloop_test_pch PRIVATE Catch2::Catch2 Eigen3::Eigen)
+  target_include_directories(sonarloop_test_pch PRIVATE ${PROJECT_SOURCE_DIR})
+  sonarloop_test_settings(sonarloop_test_pch)
+  target_precompile_headers(sonarloop_test_pch PRIVATE ${PROJECT_SOURCE_DIR}/tests/support/test_pch.h)
 endfunction()
 
 # The compile settings shared by the test executables and their precompiled header (a PCH is
-# used only with the flags it was made with). With SONARLOOP_TESTS_O0 the test code compiles at
-# -O0, except in the executables of SONARLOOP_COMPUTE_TEST_EXECUTABLES (tests/CMakeLists.txt)
-# and their header (sonarloop_test_pch_optimised): there the tests run the simulator's inline
-# geometry and Eigen code in loops, minutes at -O0.
+# used only with the flags it was made with).
 function(sonarloop_test_settings target)
   target_compile_definitions(${target} PRIVATE
     SONARLOOP_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
@@ -41,11 +32,6 @@ function(sonarloop_test_settings target)
   sonarloop_target_defaults(${target})
   # test code does a lot of intentional int/double arithmetic
   target_compile_options(${target} PRIVATE -Wno-conversion)
-  if(SONARLOOP_TESTS_O0 AND NOT target STREQUAL sonarloop_test_pch_optimised
-     AND NOT target IN_LIST SONARLOOP_COMPUTE_TEST_EXECUTABLES)
-    # after the build type's -O flag, so this one wins
-    target_compile_options(${target} PRIVATE -O0)
-  endif()
 endfunction()
 
 # test_<folder> for the current source folder below tests/, created on first use.
@@ -57,11 +43,7 @@ function(sonarloop_test_executable out_var)
     add_executable(${exe})
     target_link_libraries(${exe} PRIVATE sonarloop_catch_main)
     sonarloop_test_settings(${exe})
-    if(SONARLOOP_TESTS_O0 AND exe IN_LIST SONARLOOP_COMPUTE_TEST_EXECUTABLES)
-      target_precompile_headers(${exe} REUSE_FROM sonarloop_test_pch_optimised)
-    else()
-      target_precompile_headers(${exe} REUSE_FROM sonarloop_test_pch)
-    endif()
+    target_precompile_headers(${exe} REUSE_FROM sonarloop_test_pch)
   endif()
   set(${out_var} ${exe} PARENT_SCOPE)
 endfunction()

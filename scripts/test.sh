@@ -24,11 +24,10 @@ else
   dir=${1:-$root/build-test}
   shift || true
   "$root/scripts/install_clang.sh"
-  # -O1 -g1: line tables for the reports, at half the compile time of -O2 -g; the test code
-  # itself at -O0 (a third of its compile time; the libraries it calls keep -O1)
+  # -O1 -g1: line tables for the reports, at half the compile time of -O2 -g
   SONARLOOP_BUILD_ALL=1 "$root/scripts/build.sh" "$dir" -DSONARLOOP_SANITIZE=ON \
     -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DSONARLOOP_TESTS_O0=ON "$@"
+    "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" "$@"
   # a finding fails its test: leaks reported, UB stops the process, a stack for each report
   export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1 ${ASAN_OPTIONS:-}"
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1 ${UBSAN_OPTIONS:-}"

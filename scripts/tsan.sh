@@ -14,11 +14,9 @@ tests=(test_emulator_render_queue test_emulator_ping_producer test_emulator_emul
        test_atr_stream_receiver test_atr_onboard_pipeline test_sim_seabed_tile_cache)
 gen=()
 if command -v ninja >/dev/null 2>&1; then gen=(-G Ninja); fi
-# -O1 -g1: line tables for the reports (the test code at -O0); MPI off (Open MPI's own threads
-# are not instrumented)
+# -O1 -g1: line tables for the reports; MPI off (Open MPI's own threads are not instrumented)
 cmake -S "$root" -B "$dir" "${gen[@]}" -DSONARLOOP_TSAN=ON -DSONARLOOP_MPI=OFF \
-  -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
-  -DSONARLOOP_TESTS_O0=ON >/dev/null
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" >/dev/null
 # the executables of those tests' folders (one per folder, cmake/SonarloopTests.cmake)
 executables=(test_emulator test_drivers_can test_drivers_net test_atr test_sim_seabed)
 cmake --build "$dir" -j "$(nproc)" --target "${executables[@]}"

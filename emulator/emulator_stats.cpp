@@ -33,6 +33,15 @@ void Emulator::Impl::update_stats(std::int64_t now) {
     stats.udp_dropped = udp->dropped();
   }
   if (recording) stats.recorded_pings = recording->pings();
+  if (pose_source) {
+    const PoseSourceStats p = pose_source->stats();
+    stats.has_pose_source = true;
+    stats.pose_updates = p.updates;
+    stats.pose_rejected = p.rejected;
+    stats.pose_reanchors = p.reanchors;
+    stats.pose_malformed = p.malformed;
+    stats.pose_lost = p.lost;
+  }
 }
 
 std::vector<std::string> Emulator::Impl::describe_outputs() const {

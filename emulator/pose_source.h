@@ -129,6 +129,20 @@ struct PoseSourceOptions {
   PoseLimits limits;
 };
 
+// What a pose source counted (PoseSource::stats()).
+struct PoseSourceStats {
+  std::uint64_t updates = 0;         // frames/messages that updated the pose
+  std::uint64_t rejected = 0;        // decoded but implausible poses (PoseLimits), dropped
+  std::uint64_t reanchors = 0;       // new reference accepted after reanchor_after rejections
+  std::uint64_t ignored = 0;         // valid frames of PGNs that carry no pose (e.g. 129026)
+  std::uint64_t malformed = 0;       // undecodable messages/frames, unavailable or invalid fields
+  std::uint64_t lost = 0;            // UDP: messages missing according to the sequence numbers
+  std::uint64_t out_of_order = 0;    // UDP: late messages (older sequence), dropped
+  std::uint64_t receive_errors = 0;  // transport failures (connection lost, socket errors)
+  std::uint64_t reconnects = 0;      // successful reconnections after a failure
+  std::string last_error;            // text of the last malformed input or receive error
+};
+
 class PoseSource {
  public:
   virtual ~PoseSource();
@@ -142,6 +156,8 @@ class PoseSource {
                                               bool* extrapolated = nullptr) const = 0;
   // One line for logs, e.g. "udp pose on 127.0.0.1:5700 (120 messages, 0 malformed)".
   virtual std::string describe() const = 0;
+  // The counters so far (PoseSourceStats, below).
+  virtual PoseSourceStats stats() const = 0;
 };
 
 // The limits of a plausible pose over `scene`: its deepest seabed (the mean water depth, the
@@ -156,19 +172,6 @@ std::unique_ptr<PoseSource> open_pose_source(const std::string& spec, const Loca
                                              PoseSourceOptions options = {});
 
 // ---- the concrete sources (for tests and for callers that want their counters) ----
-
-struct PoseSourceStats {
-  std::uint64_t updates = 0;         // frames/messages that updated the pose
-  std::uint64_t rejected = 0;        // decoded but implausible poses (PoseLimits), dropped
-  std::uint64_t reanchors = 0;       // new reference accepted after reanchor_after rejections
-  std::uint64_t ignored = 0;         // valid frames of PGNs that carry no pose (e.g. 129026)
-  std::uint64_t malformed = 0;       // undecodable messages/frames, unavailable or invalid fields
-  std::uint64_t lost = 0;            // UDP: messages missing according to the sequence numbers
-  std::uint64_t out_of_order = 0;    // UDP: late messages (older sequence), dropped
-  std::uint64_t receive_errors = 0;  // transport failures (connection lost, socket errors)
-  std::uint64_t reconnects = 0;      // successful reconnections after a failure
-  std::string last_error;            // text of the last malformed input or receive error
-};
 
 // The merging state shared by the sources (thread-safe).
 class PoseMerger {
@@ -260,7 +263,7 @@ class CanPoseSource final : public PoseSource {
     return merger_.pose_at(tau_ns, max_extrapolation_ns, extrapolated);
   }
   std::string describe() const override;
-  PoseSourceStats stats() const { return merger_.stats(); }
+  PoseSourceStats stats() const override { return merger_.stats(); }
   bool connected() const { return connected_.load(); }
 
  private:
@@ -297,7 +300,7 @@ class UdpPoseSource final : public PoseSource {
     return merger_.pose_at(tau_ns, max_extrapolation_ns, extrapolated);
   }
   std::string describe() const override;
-  PoseSourceStats stats() const { return merger_.stats(); }
+  PoseSourceStats stats() const override { return merger_.stats(); }
   std::uint16_t bound_port() const { return receiver_.bound_port(); }
 
  private:

@@ -157,6 +157,13 @@ std::string stats_json(const RunStats& s) {
   hist("lateness", s.ping_lateness);
   hist("latency", s.ping_latency);
   w.end_object();
+  if (s.has_pose_source) {
+    w.key("pose_source").begin_object();
+    w.field("updates", s.pose_updates).field("rejected", s.pose_rejected);
+    w.field("reanchors", s.pose_reanchors).field("malformed", s.pose_malformed);
+    w.field("lost", s.pose_lost);
+    w.end_object();
+  }
   w.key("nav").begin_object();
   w.field("samples", s.nav_samples).field("frames", s.nav_frames);
   w.field("skipped", s.nav_frames_skipped).field("withheld", s.nav_frames_withheld);

@@ -77,8 +77,15 @@ struct RunStats {
   std::uint64_t pings_stale = 0;    // not emitted: the external pose was stale (--pose-from)
   std::uint64_t stale_episodes = 0;
   std::uint64_t pings_extrapolated = 0;  // --pose-from: rendered at an extrapolated position
-  LatencyHistogram ping_lateness;        // send - send deadline (paced runs)
-  LatencyHistogram ping_latency;         // send - ping time (paced runs): send delay + lateness
+  // --pose-from: what the pose source counted (has_pose_source false without one)
+  bool has_pose_source = false;
+  std::uint64_t pose_updates = 0;    // messages / frames that updated the pose
+  std::uint64_t pose_rejected = 0;   // decoded but implausible (depth, altitude, attitude, jumps)
+  std::uint64_t pose_reanchors = 0;  // new reference accepted after consecutive jump rejections
+  std::uint64_t pose_malformed = 0;  // undecodable
+  std::uint64_t pose_lost = 0;       // UDP: missing by sequence number
+  LatencyHistogram ping_lateness;    // send - send deadline (paced runs)
+  LatencyHistogram ping_latency;     // send - ping time (paced runs): send delay + lateness
 
   // navigation
   std::uint64_t nav_samples = 0;          // sample instants published (one SID each)

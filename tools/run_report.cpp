@@ -42,6 +42,16 @@ void print_run_summary(const emulator::RunStats& s, const char* how) {
                  ms(s.ping_latency.quantile_ns(0.99)),
                  ms(static_cast<double>(s.ping_latency.max_ns())));
   }
+  if (s.has_pose_source) {
+    std::fprintf(stderr,
+                 "  pose: %llu updates, %llu rejected as implausible (%llu re-anchored), %llu "
+                 "malformed, %llu lost\n",
+                 static_cast<unsigned long long>(s.pose_updates),
+                 static_cast<unsigned long long>(s.pose_rejected),
+                 static_cast<unsigned long long>(s.pose_reanchors),
+                 static_cast<unsigned long long>(s.pose_malformed),
+                 static_cast<unsigned long long>(s.pose_lost));
+  }
   if (s.wall_time_s > 0) {
     std::fprintf(stderr, "  throughput: %.1f pings/s (%.2fx real time)\n",
                  static_cast<double>(s.pings_sent) / s.wall_time_s, s.sim_time_s / s.wall_time_s);

@@ -88,6 +88,8 @@ TEST_CASE("emulator --rate max: byte-identical recordings on 1 and 2 threads") {
   CHECK(b.pings_sent == pings);
   CHECK(a.deadline_misses() == 0);
   CHECK(a.ping_lateness.count() == 0);  // no deadlines at --rate max
+  CHECK_FALSE(a.has_pose_source);       // no --pose-from: no pose counters reported
+  CHECK_THAT(stats_json(a), !Catch::Contains("\"pose_source\""));
   CHECK(a.epoch_utc_ns == kMaxRateEpochUtcNs);
   for (const char* f : {"pings.xtf", "nav.log", "truth.csv"}) {
     INFO(f);
@@ -443,6 +445,14 @@ TEST_CASE("emulator --pose-from: a source of absurd poses stalls the pings; they
   CHECK(said("depth 5000 m is below the scene's deepest seabed"));
   CHECK(said("pings paused"));
   CHECK(said("pings resumed"));
+  // the run's statistics count them: all 50 absurd messages (sent 0.5 s to 1.5 s into the 2.5 s
+  // run) rejected, the plausible ones that arrived before the end as updates
+  CHECK(s.has_pose_source);
+  CHECK(s.pose_rejected == 50);
+  CHECK(s.pose_updates >= 25);
+  CHECK(s.pose_updates <= 60);
+  CHECK(s.pose_malformed == 0);
+  CHECK_THAT(stats_json(s), Catch::Contains("\"pose_source\"") && Catch::Contains("\"rejected\""));
   // no ping at the absurd depth
   const auto file = xtf::read_all_pings(dir.file("hil/pings.xtf"));
   REQUIRE(file.pings.size() == s.pings_sent);

@@ -17,7 +17,7 @@ using render::SampleType;
 using render::SonarDesc;
 
 // Every key of a sonar map, in the order of config/reference.yaml (and of "allowed" lists).
-constexpr std::array<std::string_view, 23> kSonarKeys{"name",
+constexpr std::array<std::string_view, 25> kSonarKeys{"name",
                                                       "preset",
                                                       "frequency_khz",
                                                       "source_level_db",
@@ -36,6 +36,8 @@ constexpr std::array<std::string_view, 23> kSonarKeys{"name",
                                                       "gain_db",
                                                       "bottom_model",
                                                       "lambert_mu_db",
+                                                      "target_specular_fraction",
+                                                      "target_rms_slope",
                                                       "speckle",
                                                       "noise",
                                                       "rays_per_bin",
@@ -382,6 +384,11 @@ SonarDesc read_sonar_map(const Field& f, Source source) {
   d.lambert_mu_db = get_plain(
       f, "lambert_mu_db", base.lambert_mu_db,
       Range::closed(-60, -4.97).with_note("-4.97: about 10 log10(1/pi), the energy bound"));
+  d.target_specular_fraction =
+      get_plain(f, "target_specular_fraction", base.target_specular_fraction,
+                Range::closed(0, 1).with_note("0 = Lambert facets only, as the paper"));
+  d.target_rms_slope =
+      get_plain(f, "target_rms_slope", base.target_rms_slope, Range::closed(0.02, 0.5));
   d.speckle = f.get_bool("speckle", base.speckle);
   d.noise = f.get_bool("noise", base.noise);
   d.rays_per_bin = f.get_int("rays_per_bin", base.rays_per_bin, 0, 64);
@@ -469,6 +476,8 @@ std::string format_sonar_yaml(const SonarDesc& d, int indent) {
   put(out, pad, "gain_db", num(d.gain_db));
   put(out, pad, "bottom_model", word_of(kBottomWords, d.bottom_model));
   put(out, pad, "lambert_mu_db", num(d.lambert_mu_db));
+  put(out, pad, "target_specular_fraction", num(d.target_specular_fraction));
+  put(out, pad, "target_rms_slope", num(d.target_rms_slope));
   put(out, pad, "speckle", d.speckle ? "true" : "false");
   put(out, pad, "noise", d.noise ? "true" : "false");
   put(out, pad, "rays_per_bin", std::to_string(d.rays_per_bin));

@@ -8,6 +8,7 @@
 #include "sim/acoustics/beam_pattern.h"
 #include "sim/acoustics/noise.h"
 #include "sim/acoustics/target_scattering.h"
+#include "sim/acoustics/target_specular.h"
 #include "sim/render/bin_labels.h"
 #include "sim/seabed/sediment.h"
 
@@ -140,12 +141,15 @@ double EchoModel::seabed_sigma_over_sin_exact(int sediment, double sin_grazing) 
   return seabed_sigma(sediment, std::asin(x)) / x;
 }
 
-double EchoModel::target_mu(const scene::Scene& scene, int target) const {
-  // design choice (target_scattering.h): Lambert μ = R²/π, R the impedance reflectance
+EchoModel::TargetScatter EchoModel::target_scatter(const scene::Scene& scene, int target) const {
+  // design choices (target_scattering.h, target_specular.h): Lambert μ = (1 − f)·R²/π and the
+  // specular weight f·R², R the impedance reflectance
   const double z_water = acoustics::acoustic_impedance(kWaterDensity_kg_m3, sonar_.sound_speed_m_s);
   const double r = acoustics::impedance_reflectance(
       z_water, scene.targets()[static_cast<std::size_t>(target)].impedance_rayl);
-  return acoustics::lambert_mu_from_reflectance(r);
+  const double f = sonar_.desc.target_specular_fraction;
+  const double mu = acoustics::lambert_mu_from_reflectance(r);
+  return {f > 0.0 ? (1.0 - f) * mu : mu, f * r * r};
 }
 
 namespace {
@@ -170,12 +174,17 @@ EchoModel::TubeEcho EchoModel::seabed_tube(const RayMeta& m, double r, double co
 }
 
 EchoModel::TubeEcho EchoModel::target_tube(const RayMeta& m, double r, double cos_i,
-                                           double mu) const {
+                                           const TargetScatter& t) const {
   cos_i = std::max(cos_i, kMinCosIncidence);
   const double d_omega = m.solid_angle / (strip_ ? r : 1.0);
   const double spread =
       source_level_lin_ * m.pattern * d_omega * std::exp(-alpha_np_ * r) / (r * r);
-  return {spread * mu * cos_i, tube_width_bins(m, r, cos_i, sonar_.desc.bin_size_m)};
+  const double width = tube_width_bins(m, r, cos_i, sonar_.desc.bin_size_m);
+  if (t.specular_weight <= 0.0) return {spread * t.mu * cos_i, width};  // Lambert: μ cos²θ / cos θ
+  const double specular =
+      t.specular_weight *
+      acoustics::kirchhoff_facet_backscatter(cos_i, sonar_.desc.target_rms_slope) / cos_i;
+  return {spread * (t.mu * cos_i + specular), width};
 }
 
 void EchoModel::start_lines(const RenderOptions& options, PingScratch& scratch) const {

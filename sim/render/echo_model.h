@@ -13,13 +13,14 @@
 // depression axis and G_h the horizontal one (acoustics/beam_pattern.h), σ the backscattering
 // cross-section per unit area per steradian at the local grazing angle θ (APL-UW TR 9407 or
 // Lambert, acoustics/backscatter_table.h; a target facet's Lambert μ·cos²θ,
-// acoustics/target_scattering.h), dA the area of the element, α the Francois–Garrison absorption
+// acoustics/target_scattering.h, plus the specular term of acoustics/target_specular.h when the
+// sonar asks for it), dA the area of the element, α the Francois–Garrison absorption
 // (acoustics/absorption.h). For an element seen under a vertical angle dδ across a horizontal
 // width W (strip: W metres; beam: W = r·w_j, w_j the along-track sample's share of ∫G_h dψ) at
 // incidence θ_i from its normal, dA = r·dδ·W / cos θ_i, so
 //
 //   I = SL · G_v · σ(θ) / cos θ_i · dδ · W · e^(−2αr) / r³          (seabed, cos θ_i = sin θ)
-//   I = SL · G_v · μ cos θ_i · dδ · W · e^(−2αr) / r³                (target facet)
+//   I = SL · G_v · μ cos θ_i · dδ · W · e^(−2αr) / r³                (Lambert target facet)
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -82,18 +83,26 @@ class EchoModel {
   // σ/sin θ from the angle table (any sin θ; slower: an arcsine)
   double seabed_sigma_over_sin_exact(int sediment, double sin_grazing) const;
 
-  // Lambert μ of a target (acoustics/target_scattering.h: μ = R²/π from its impedance).
-  double target_mu(const scene::Scene& scene, int target) const;
+  // How a target scatters: the Lambert μ of its facets, (1 − f)·R²/π
+  // (acoustics/target_scattering.h), and the weight f·R² of the specular Kirchhoff term
+  // (acoustics/target_specular.h), R the impedance reflectance and f the sonar's
+  // target_specular_fraction.
+  struct TargetScatter {
+    double mu = 0.0;
+    double specular_weight = 0.0;
+  };
+  TargetScatter target_scatter(const scene::Scene& scene, int target) const;
 
   // The echo of a ray tube (meta: solid angle, dδ, G_v) hitting a surface at range r with
   // incidence cosine cos_i: the intensity it adds and the slant-range width (bins) its footprint
-  // spans, r·dδ·tan θ_i. Seabed: σ from the sediment at grazing asin(cos_i); target: μ·cos_i.
+  // spans, r·dδ·tan θ_i. Seabed: σ from the sediment at grazing asin(cos_i); target:
+  // (μ·cos²θ_i + f·R²·σ_spec(θ_i)) / cos θ_i.
   struct TubeEcho {
     double intensity = 0.0;
     double width_bins = 0.0;
   };
   TubeEcho seabed_tube(const RayMeta& m, double r, double cos_i, int sediment) const;
-  TubeEcho target_tube(const RayMeta& m, double r, double cos_i, double mu) const;
+  TubeEcho target_tube(const RayMeta& m, double r, double cos_i, const TargetScatter& t) const;
   // SL · G_v · dΩ · e^(−2αr) / r² of a tube (dΩ: the strip's solid angle is its dδ·width / r)
   double tube_spread(const RayMeta& m, double r) const {
     const double d_omega = m.solid_angle / (strip_ ? r : 1.0);

@@ -488,7 +488,7 @@ void ProfileRenderer::march(const scene::Scene& scene, const Line& line,
     const Vec3 nrm = Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z).normalized();
     const auto target = static_cast<int>(rh.hit.geomID);
     const EchoModel::TubeEcho e =
-        em.target_tube(scratch.meta[i], r, std::fabs(d.dot(nrm)), em.target_mu(scene, target));
+        em.target_tube(scratch.meta[i], r, std::fabs(d.dot(nrm)), em.target_scatter(scene, target));
     splat(scratch.accum[line.side], r * inv_dr, e.width_bins, e.intensity);
     if (labels)
       splat(scratch.labels.target_energy[line.side], r * inv_dr, e.width_bins, e.intensity);

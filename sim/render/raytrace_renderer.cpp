@@ -258,7 +258,7 @@ void RaytraceRenderer::shade(const scene::Scene& scene, const scene::SceneView& 
       if (options.labels) count_seabed_sample(scratch.labels, m.side, bin, false);
     } else {
       view.describe_hit(rh.hit.geomID, Vec3::Zero(), info);
-      e = echo().target_tube(m, r, cos_i, echo().target_mu(scene, info.target));
+      e = echo().target_tube(m, r, cos_i, echo().target_scatter(scene, info.target));
       if (options.labels)
         splat(scratch.labels.target_energy[m.side], r / dr, e.width_bins, e.intensity);
       if (options.truth || options.labels) {

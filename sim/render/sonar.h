@@ -48,8 +48,12 @@ struct SonarDesc {
   double gain_db = 0.0;  // added before quantisation (see quantise.h)
   acoustics::BottomModel bottom_model = acoustics::BottomModel::kApl;
   double lambert_mu_db = -27.0;  // for bottom_model kLambert
-  bool speckle = true;           // fully developed (exponential) speckle per bin
-  bool noise = true;             // Mellen thermal noise in the receiver band
+  // Targets: the share f of the reflected energy R² returned by the specular (Kirchhoff) term,
+  // the rest by Lambert facets (acoustics/target_specular.h); 0 = Lambert only (the paper).
+  double target_specular_fraction = 0.0;
+  double target_rms_slope = 0.15;  // rms micro-slope per component s of the specular term
+  bool speckle = true;             // fully developed (exponential) speckle per bin
+  bool noise = true;               // Mellen thermal noise in the receiver band
   // Fidelity knobs (renderer.h): 0 = the default rule
   int rays_per_bin = 0;      // vertical rays per range bin on a flat seabed
   int along_track_rays = 0;  // rays across the horizontal beam or strip

@@ -37,6 +37,8 @@ inline void check_same_sonar(const render::SonarDesc& a, const render::SonarDesc
   CHECK(a.gain_db == b.gain_db);
   CHECK(a.bottom_model == b.bottom_model);
   CHECK(a.lambert_mu_db == b.lambert_mu_db);
+  CHECK(a.target_specular_fraction == b.target_specular_fraction);
+  CHECK(a.target_rms_slope == b.target_rms_slope);
   CHECK(a.speckle == b.speckle);
   CHECK(a.noise == b.noise);
   CHECK(a.rays_per_bin == b.rays_per_bin);

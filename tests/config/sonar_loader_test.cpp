@@ -62,6 +62,8 @@ const std::vector<std::string> kKeys = {"name",
                                         "gain_db",
                                         "bottom_model",
                                         "lambert_mu_db",
+                                        "target_specular_fraction",
+                                        "target_rms_slope",
                                         "speckle",
                                         "noise",
                                         "rays_per_bin",
@@ -653,6 +655,8 @@ const std::vector<KeySpec>& key_specs() {
       {"gain_db", Kind::kReal, -100, 100, {}},
       {"bottom_model", Kind::kWord, 0, 0, {"apl", "lambert"}},
       {"lambert_mu_db", Kind::kReal, -60, -4.97, {}},
+      {"target_specular_fraction", Kind::kReal, 0, 1, {}},
+      {"target_rms_slope", Kind::kReal, 0.02, 0.5, {}},
       {"speckle", Kind::kBool, 0, 0, {}},
       {"noise", Kind::kBool, 0, 0, {}},
       {"rays_per_bin", Kind::kInt, 0, 64, {}},
@@ -708,6 +712,10 @@ void apply(render::SonarDesc& d, const std::string& key, const std::string& text
         text == "apl" ? acoustics::BottomModel::kApl : acoustics::BottomModel::kLambert;
   } else if (key == "lambert_mu_db") {
     d.lambert_mu_db = num();
+  } else if (key == "target_specular_fraction") {
+    d.target_specular_fraction = num();
+  } else if (key == "target_rms_slope") {
+    d.target_rms_slope = num();
   } else if (key == "speckle") {
     d.speckle = text == "true";
   } else if (key == "noise") {
@@ -756,6 +764,8 @@ void check_near(const render::SonarDesc& a, const render::SonarDesc& b) {
   CHECK(a.gain_db == b.gain_db);
   CHECK(a.bottom_model == b.bottom_model);
   CHECK(a.lambert_mu_db == b.lambert_mu_db);
+  CHECK(a.target_specular_fraction == b.target_specular_fraction);
+  CHECK(a.target_rms_slope == b.target_rms_slope);
   CHECK(a.speckle == b.speckle);
   CHECK(a.noise == b.noise);
   CHECK(a.rays_per_bin == b.rays_per_bin);
@@ -809,7 +819,7 @@ class SonarGenerator {
         const double u = rng_.uniform();
         if (u < 0.1) return real_text(s.lo);
         if (u < 0.2) return real_text(s.hi);
-        if (u < 0.4)
+        if (u < 0.4 && std::floor(s.hi) >= std::ceil(s.lo))  // an integer, if the range has one
           return std::to_string(static_cast<int>(std::ceil(s.lo)) +
                                 static_cast<int>(rng_.below(static_cast<std::uint64_t>(
                                     std::floor(s.hi) - std::ceil(s.lo) + 1))));

@@ -1,61 +1,16 @@
 #include "sim/acoustics/target_scattering.h"
 
-#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
+
+#include "tests/sim/acoustics/tessellated_sphere.h"
 
 using namespace sonarloop::acoustics;
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
 
 namespace {
-
-using Vec3 = std::array<double, 3>;
-
-Vec3 sub(const Vec3& a, const Vec3& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double norm(const Vec3& a) {
-  return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-}
-
-Vec3 sphere_point(double radius, double polar, double azimuth) {
-  return {radius * std::sin(polar) * std::cos(azimuth),
-          radius * std::sin(polar) * std::sin(azimuth), radius * std::cos(polar)};
-}
-
-// Σ over flat triangles of a UV-tessellated sphere of μ·cos²θ·dA, seen from far along +z
-// (the sonar direction, unit vector d = (0, 0, 1)).
-double tessellated_sphere_cross_section(double mu, double radius, int n_polar, int n_azimuth) {
-  const double pi = std::numbers::pi;
-  double sigma = 0.0;
-  auto add_triangle = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 n2 = cross(sub(b, a), sub(c, a));  // |n2| = 2·area, outward by winding
-    const double twice_area = norm(n2);
-    if (twice_area <= 0.0) return;
-    const double cos_incidence = n2[2] / twice_area;  // normal · d
-    sigma += lambert_facet_backscatter(cos_incidence, mu) * 0.5 * twice_area;
-  };
-  for (int i = 0; i < n_polar; ++i) {
-    const double p0 = pi * i / n_polar;
-    const double p1 = pi * (i + 1) / n_polar;
-    for (int j = 0; j < n_azimuth; ++j) {
-      const double a0 = 2.0 * pi * j / n_azimuth;
-      const double a1 = 2.0 * pi * (j + 1) / n_azimuth;
-      const Vec3 v00 = sphere_point(radius, p0, a0);
-      const Vec3 v01 = sphere_point(radius, p0, a1);
-      const Vec3 v10 = sphere_point(radius, p1, a0);
-      const Vec3 v11 = sphere_point(radius, p1, a1);
-      add_triangle(v00, v10, v11);
-      add_triangle(v00, v11, v01);
-    }
-  }
-  return sigma;
-}
 
 // seawater of docs/physics.md §4: 1027 kg/m³, 1500 m/s
 const double kZWater = acoustic_impedance(1027.0, 1500.0);
@@ -104,7 +59,8 @@ TEST_CASE("target scattering: Lambertian facet and sphere (docs/physics.md §4, 
 
   // numeric: integrate μ cos²θ dA over a tessellated sphere and compare with (2π/3)·μ·a²
   for (double radius : {0.5, 1.0}) {
-    const double numeric = tessellated_sphere_cross_section(mu, radius, 180, 360);
+    const double numeric = sonarloop::testing::tessellated_sphere_sum(
+        radius, 180, 360, 2, [&](double c) { return lambert_facet_backscatter(c, mu); });
     INFO("radius " << radius);
     CHECK_THAT(numeric, WithinRel(lambert_sphere_cross_section_m2(mu, radius), 1e-3));
     CHECK_THAT(target_strength_db(numeric),

@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "sim/acoustics/beam_pattern.h"
+#include "sim/acoustics/target_specular.h"
 
 using namespace sonarloop;
 using namespace sonarloop::render;
@@ -81,4 +82,39 @@ TEST_CASE("echo model: range factor is SL e^(-2 alpha r) / r^3, also at bin cent
   }
   REQUIRE(em.range_factor_at_bin().size() == static_cast<std::size_t>(s.bins));
   CHECK(em.range_factor_at_bin()[100] == Approx(em.range_factor(100.5 * 0.05)));
+}
+
+TEST_CASE(
+    "echo model: a target tube is (mu cos^2 + f R^2 sigma_spec) / cos of the sonar equation") {
+  SonarDesc d;
+  d.max_range_m = 50.0;
+  d.bin_size_m = 0.05;
+  d.target_rms_slope = 0.2;
+  const SonarSetup s = make_sonar_setup(d, scene::WaterDesc{});
+  const EchoModel em(s, default_fidelity(s));
+  RayMeta m;
+  m.solid_angle = 1e-4f;
+  m.depression_width = 1e-3f;
+  m.pattern = 0.5f;
+  const double r = 20.0;
+  const double spread = em.tube_spread(m, r);
+  const double mu = 0.2;
+  for (double cos_i : {1.0, 0.95, 0.6, 0.1}) {
+    INFO("cos_i " << cos_i);
+    // Lambert only: SL·G_v·dΩ·e^(−2αr)/r² · μ cos θ (echo_model.h)
+    const auto lambert = em.target_tube(m, r, cos_i, {mu, 0.0});
+    CHECK(lambert.intensity == Approx(spread * mu * cos_i).epsilon(1e-12));
+    // with the specular term: + w·σ_spec(θ)/cos θ (acoustics/target_specular.h)
+    const double w = 0.4;
+    const auto both = em.target_tube(m, r, cos_i, {mu, w});
+    const double spec = w * acoustics::kirchhoff_facet_backscatter(cos_i, 0.2) / cos_i;
+    CHECK(both.intensity == Approx(spread * (mu * cos_i + spec)).epsilon(1e-12));
+    CHECK(both.width_bins == lambert.width_bins);
+    CHECK(both.intensity >= lambert.intensity);
+  }
+  // the glint: at normal incidence w/(8π s²) = 0.4/(0.32π) ≈ 2 μ, 60° off normal it is gone
+  CHECK(em.target_tube(m, r, 1.0, {0.0, 0.4}).intensity >
+        1.9 * em.target_tube(m, r, 1.0, {mu, 0.0}).intensity);
+  CHECK(em.target_tube(m, r, 0.5, {0.0, 0.4}).intensity <
+        1e-6 * em.target_tube(m, r, 0.5, {mu, 0.0}).intensity);
 }

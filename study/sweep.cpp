@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "atr/shadow_height.h"
+
 namespace sonarloop::study {
 
 // the classifier this study code trains and scores (atr/)
@@ -146,11 +148,20 @@ ErrorRate error_rate(std::size_t errors, std::size_t n, double z) {
   return r;
 }
 
-LabelledChip labelled_chip(const render::ChipImage& c) {
+Chip classifier_chip(const render::ChipImage& c, bool shadow_height) {
+  Chip chip;
+  chip.width = c.cols;
+  chip.height = c.rows;
+  chip.pixels.assign(c.pixels.begin(), c.pixels.end());
+  if (!shadow_height) return chip;
+  const ShadowChipGeometry g{c.params.altitude_m, c.params.ground_range_m, c.range_start_m,
+                             c.resolution_m};
+  return shadow_height_chip(chip.view(), g);
+}
+
+LabelledChip labelled_chip(const render::ChipImage& c, bool shadow_height) {
   LabelledChip lc;
-  lc.chip.width = c.cols;
-  lc.chip.height = c.rows;
-  lc.chip.pixels.assign(c.pixels.begin(), c.pixels.end());
+  lc.chip = classifier_chip(c, shadow_height);
   lc.label = std::string(targets::target_type_info(c.params.type).key);
   lc.aspect_deg = c.params.aspect_deg;
   lc.source = "chip " + std::to_string(c.params.index);

@@ -67,8 +67,12 @@ struct ErrorRate {
 };
 ErrorRate error_rate(std::size_t errors, std::size_t n, double z = atr::kZ95);
 
-// A rendered chip as a classifier chip: pixels 0..255 as float, label = target key, aspect.
-atr::LabelledChip labelled_chip(const render::ChipImage& c);
+// A rendered chip as the classifier sees it: pixels 0..255 as float; with shadow_height, a
+// shadow chip resampled to height coordinates (atr/shadow_height.h) with the geometry the chip
+// was rendered with.
+atr::Chip classifier_chip(const render::ChipImage& c, bool shadow_height = false);
+// The same with its label (the target's key) and aspect, for training.
+atr::LabelledChip labelled_chip(const render::ChipImage& c, bool shadow_height = false);
 
 // What the command line sets.
 struct SweepSettings {
@@ -89,6 +93,9 @@ struct SweepSettings {
   // highlight experiments crop each resolution's chips by adaptive_crop_fraction (overrides
   // preprocess.crop_fraction; not the ablation, not shadow chips)
   bool crop_auto = false;
+  // shadow chips (fig15, fusion) resampled to height coordinates before anything else
+  // (atr/shadow_height.h; ours, off by default as the paper)
+  bool shadow_height = false;
   double reject_quantile = 0.95;  // open_set's calibration quantile
 };
 

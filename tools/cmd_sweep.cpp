@@ -126,10 +126,12 @@ struct Trial {
 // Renders the chips of one slot into labelled chips (returns false when stopped).
 bool render_labelled(const render::ChipRenderer& r, int slot, std::size_t count, RunContext& ctx,
                      std::vector<atr::LabelledChip>& out, double* wall_s) {
+  const bool shadow_height =
+      ctx.settings.shadow_height && r.spec().kind == render::ChipKind::kShadow;
   const std::size_t got = render_slot(
       r, slot, count, ctx.threads,
       [&](const render::ChipImage& c) {
-        out.push_back(study::labelled_chip(c));
+        out.push_back(study::labelled_chip(c, shadow_height));
         ctx.bar->update(++ctx.chips_done);
       },
       wall_s);
@@ -207,12 +209,14 @@ bool run_experiment(const study::SweepExperiment& e, RunContext& ctx,
 
       // test chips: every condition classifies each one
       const std::size_t n_test = static_cast<std::size_t>(e.test_count) * classes;
-      std::vector<float> pixels;
+      const bool shadow_height =
+          ctx.settings.shadow_height && test_r.spec().kind == render::ChipKind::kShadow;
+      atr::Chip chip;
       const std::size_t tested = render_slot(
           test_r, static_cast<int>(slot), n_test, ctx.threads,
           [&](const render::ChipImage& c) {
-            pixels.assign(c.pixels.begin(), c.pixels.end());
-            const atr::ChipView view{c.cols, c.rows, pixels};
+            chip = study::classifier_chip(c, shadow_height);  // the training chips' treatment
+            const atr::ChipView view = chip.view();
             const auto truth = static_cast<std::size_t>(
                 std::find(e.classes.begin(), e.classes.end(), c.params.type) - e.classes.begin());
             for (Trial& t : trials) {
@@ -300,15 +304,16 @@ bool run_fusion_experiment(const study::SweepExperiment& e, RunContext& ctx,
       for (std::size_t i = 0; i < hl.size(); ++i) {
         if (ch.classify(hl[i].chip.view()).ok()) by_highlight[i] = ch.result();
       }
-      std::vector<float> pixels, fused(classes);
+      std::vector<float> fused(classes);
+      atr::Chip shadow_chip;
       double classify_s = 0.0;
       const std::size_t tested = render_slot(
           ts, islot, n_test, ctx.threads,
           [&](const render::ChipImage& c) {
             ctx.bar->update(++ctx.chips_done);
-            pixels.assign(c.pixels.begin(), c.pixels.end());
+            shadow_chip = study::classifier_chip(c, ctx.settings.shadow_height);
             const auto t1 = Clock::now();
-            const bool shadow_ok = cs.classify(atr::ChipView{c.cols, c.rows, pixels}).ok();
+            const bool shadow_ok = cs.classify(shadow_chip.view()).ok();
             classify_s += seconds_since(t1);
             const auto& h = by_highlight.at(c.params.index);
             const auto truth = static_cast<std::size_t>(
@@ -396,6 +401,7 @@ int run_sweep(const std::vector<std::string>& argv) {
                          {"--non-mine"},
                          {"--sonar"},
                          {"--no-plot", false},
+                         {"--shadow-height", false},
                          {"--renderer"},
                          {"--crop"},
                          {"--multilook"},
@@ -417,6 +423,7 @@ int run_sweep(const std::vector<std::string>& argv) {
   s.seabeds = parse_seabeds(args.get_or("--seabed", kDefaultSeabeds));
   s.renderer = renderer_option(args);
   s.preprocess = preprocess_options(args, &s.crop_auto);
+  s.shadow_height = args.has("--shadow-height");
   s.reject_quantile = args.get_double("--reject-quantile", 0.01, 0.9999).value_or(0.95);
   const std::string sonar_arg = args.get_or("--sonar", std::string(config::kDefaultSonarPreset));
   const std::string ext = fs::path(sonar_arg).extension().string();
@@ -553,6 +560,9 @@ options:
                        chip pre-processing before eq. 9 for every experiment but ablation,
                        as `sonarloop train` (default none, as the paper); --crop auto crops
                        highlight chips per resolution to max(1.2 m, 10 pixels) a side
+  --shadow-height      resample shadow chips (fig15, fusion) from slant range to the height
+                       whose shadow ends there, with each chip's altitude and range, so that a
+                       target's shadow has one length from any altitude (ours; default off)
   --reject-quantile Q  open_set's calibration quantile (default 0.95), as `sonarloop train`
 
 Ctrl-C stops after the chip in progress; the CSV files keep every condition scored so far.
@@ -569,6 +579,7 @@ examples:
   sonarloop sweep --experiment all --test-count 1000 --out /tmp/sweep_big
   sonarloop sweep --experiment ablation --test-count 1000 --out /tmp/ablation
   sonarloop sweep --experiment fig13 --crop auto --out /tmp/fig13_crop
+  sonarloop sweep --experiment fig15 --shadow-height --out /tmp/fig15_height
   mpirun -np 8 sonarloop sweep --experiment fig11 --test-count 10000 --out /scratch/fig11
 )",
     run_sweep, 65};

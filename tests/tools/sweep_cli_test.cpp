@@ -173,3 +173,20 @@ TEST_CASE("sweep: the same seed gives the same counts on any number of threads",
   CHECK(slurp(dir.path() / "a" / "fig13_confusion.csv") ==
         slurp(dir.path() / "b" / "fig13_confusion.csv"));
 }
+
+TEST_CASE("sweep --shadow-height: training and test shadows are projected alike", "[sweep_cli]") {
+  // Shadow chips resampled to height coordinates (atr/shadow_height.h) on a flat seabed: if the
+  // test chips were left in slant range while the subspaces learnt projected ones (or the other
+  // way round), the four targets would be identified at chance (75 % error).
+  const sonarloop::testing::TempDir dir("sweep_cli_shadow_height");
+  const std::string log = dir.file("log.txt");
+  REQUIRE(run_to_log("sweep --experiment fig15 --shadow-height --seabed flat --resolutions-cm 10 "
+                     "--train-count 30 --test-count 30 --p 10 --no-plot --seed 5 --out " +
+                         dir.file("o"),
+                     log) == 0);
+  const auto rows = read_sweep_csv(dir.path() / "o" / "fig15.csv");
+  const Row& all = find_row(rows, "10", "all");
+  CHECK(num(all, "n") == 120);
+  CHECK(num(all, "error_pct") < 40.0);
+  CHECK(rows.front().at("complete") == "1");
+}

@@ -19,6 +19,9 @@ Studies:
   nav_noise   vehicle.nav.position_noise_m 0, 0.1, 0.3, 1, 3 m (white; drift 0)
   nav_drift   vehicle.nav.position_drift_m_per_sqrt_s 0, 0.05, 0.2, 0.5, 1 (noise 0.1 m)
   altitude    vehicle.trajectory.depth.altitude_m 3, 5, 7.5, 10, 15 m (terrain following)
+  range       the straight track moved sideways (start_m east -40 .. 40 m in 10 m steps), so
+              that each target is seen at another ground range; reported per 10 m bin of the
+              target's ground range from the track (0-10, ..., 40-50 m), not per offset
 Writes OUT_DIR/onboard_stability.csv and, with matplotlib, onboard_stability.png.
 
 example:
@@ -52,7 +55,27 @@ STUDIES = {
     "altitude": ("altitude_m", [3.0, 5.0, 7.5, 10.0, 15.0],
                  lambda s, v: s["vehicle"]["trajectory"].setdefault("depth", {}).update(
                      mode="altitude", altitude_m=v)),
+    "range": ("track_east_m", [-40.0, -30.0, -20.0, -10.0, 0.0, 10.0, 20.0, 30.0, 40.0],
+              lambda s, v: straight(s).update(start_m=[straight(s).get("start_m", [0.0, 0.0])[0], v])),
 }
+# the range study's bins of target ground range (m): [lo, hi)
+RANGE_BINS = [(0.0, 10.0), (10.0, 20.0), (20.0, 30.0), (30.0, 40.0), (40.0, 50.0)]
+
+
+def straight(s):
+    t = s["vehicle"]["trajectory"]
+    if t.get("kind", "straight") != "straight":
+        raise SystemExit("the range study needs a straight trajectory (vehicle.trajectory.kind)")
+    return t
+
+
+def ground_range_m(scenario, position):
+    """Horizontal distance from a target to the straight track's line."""
+    t = scenario["vehicle"]["trajectory"]
+    n0, e0 = t.get("start_m", [0.0, 0.0])
+    h = math.radians(t.get("heading_deg", 0.0))
+    dn, de = position[0] - n0, position[1] - e0
+    return abs(-dn * math.sin(h) + de * math.cos(h))
 
 
 def nav(s):
@@ -144,8 +167,30 @@ def main(argv):
     work = os.path.join(a.out_dir, "runs")
     os.makedirs(work, exist_ok=True)
     out_rows = []
+
+    def report(study, key, level, runs, results, falses):
+        n = len(results)
+        det = [r for r in results if r[1]]
+        errs = [r[4] for r in det]
+        row = {
+            "study": study, "key": key, "level": level, "runs": runs, "targets": n,
+            "detected": len(det), "identified": sum(r[2] for r in det),
+            "mine_ok": sum(r[3] for r in det),
+            "false_contacts_per_run": falses / runs,
+            "position_error_median_m": quantile(errs, 0.5),
+            "position_error_p90_m": quantile(errs, 0.9),
+        }
+        out_rows.append(row)
+        print(f"{study:9s} {key}={level:<5g} detected {row['detected']}/{n}, identified "
+              f"{row['identified']}, mine/non-mine right {row['mine_ok']}, false "
+              f"{row['false_contacts_per_run']:.1f}/run, position error median "
+              f"{row['position_error_median_m']:.2f} m, p90 {row['position_error_p90_m']:.2f} m",
+              flush=True)
+
     for study in a.study or ["nav_noise", "nav_drift", "altitude"]:
         key, levels, apply = STUDIES[study]
+        by_bin = {b: ([], 0) for b in RANGE_BINS}  # range study: (results, runs seen)
+        falses_all, runs_all = 0, 0
         for level in levels:
             results, falses = [], 0
             for seed in range(1, a.seeds + 1):
@@ -156,23 +201,22 @@ def main(argv):
                                              f"{study}_{level:g}_{seed}"))
                 results += rows
                 falses += f
-            n = len(results)
-            det = [r for r in results if r[1]]
-            errs = [r[4] for r in det]
-            row = {
-                "study": study, "key": key, "level": level, "runs": a.seeds, "targets": n,
-                "detected": len(det), "identified": sum(r[2] for r in det),
-                "mine_ok": sum(r[3] for r in det),
-                "false_contacts_per_run": falses / a.seeds,
-                "position_error_median_m": quantile(errs, 0.5),
-                "position_error_p90_m": quantile(errs, 0.9),
-            }
-            out_rows.append(row)
-            print(f"{study:9s} {key}={level:<5g} detected {row['detected']}/{n}, identified "
-                  f"{row['identified']}, mine/non-mine right {row['mine_ok']}, false "
-                  f"{row['false_contacts_per_run']:.1f}/run, position error median "
-                  f"{row['position_error_median_m']:.2f} m, p90 {row['position_error_p90_m']:.2f} m",
-                  flush=True)
+                if study == "range":
+                    for (kind, pos), r in zip([(t["type"], t["position_m"])
+                                               for t in sc.get("targets", [])], rows):
+                        g = ground_range_m(sc, pos)
+                        for b in RANGE_BINS:
+                            if b[0] <= g < b[1]:
+                                by_bin[b][0].append(r)
+            if study != "range":
+                report(study, key, level, a.seeds, results, falses)
+            falses_all += falses
+            runs_all += a.seeds
+        if study == "range":
+            for b in RANGE_BINS:
+                if by_bin[b][0]:
+                    report(study, "ground_range_m", 0.5 * (b[0] + b[1]), runs_all, by_bin[b][0],
+                           falses_all)
     csv_path = os.path.join(a.out_dir, "onboard_stability.csv")
     with open(csv_path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(out_rows[0].keys()))

@@ -95,13 +95,6 @@ std::string format_pct(double v) {
   return buf;
 }
 
-// Sec. 4.1.2: the mine-like Manta, Rockan and cylinder, then the non-mine shapes.
-std::vector<TargetType> fig13_classes(const SweepSettings& s) {
-  std::vector<TargetType> out{TargetType::kManta, TargetType::kRockan, TargetType::kCylinder};
-  out.insert(out.end(), s.non_mine.begin(), s.non_mine.end());
-  return out;
-}
-
 // The pre-processing variants of the ablation: each factor alone, then the combinations.
 std::vector<ChipPreprocess> ablation_variants() {
   std::vector<ChipPreprocess> v(1);  // eq. 9 only (the paper)
@@ -166,6 +159,12 @@ LabelledChip labelled_chip(const render::ChipImage& c, bool shadow_height) {
   lc.aspect_deg = c.params.aspect_deg;
   lc.source = "chip " + std::to_string(c.params.index);
   return lc;
+}
+
+std::vector<TargetType> fig13_classes(const SweepSettings& s) {
+  std::vector<TargetType> out{TargetType::kManta, TargetType::kRockan, TargetType::kCylinder};
+  out.insert(out.end(), s.non_mine.begin(), s.non_mine.end());
+  return out;
 }
 
 std::vector<std::string> sweep_experiment_names() {
@@ -247,8 +246,12 @@ SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettin
           return true;
         });
   } else if (name == "open_set") {
-    e.title = "Open-set rejection: each of the seven targets left out of training in turn";
+    e.title =
+        "Open-set rejection: each of the seven targets left out of training in turn, "
+        "then types never trained";
     e.classes = fig13_classes(s);
+    e.novel_from = e.classes.size();
+    e.classes.insert(e.classes.end(), s.novel.begin(), s.novel.end());
     const std::vector<double> res =
         s.resolutions_cm.empty() ? std::vector<double>{5.0, 15.0} : s.resolutions_cm;
     for (double cm : res) {
@@ -379,11 +382,14 @@ std::vector<LabelledChip> training_prefix(const std::vector<LabelledChip>& chips
 std::vector<LabelledChip> training_set(const std::vector<LabelledChip>& chips,
                                        const SweepExperiment& e, const SweepCondition& c) {
   std::vector<LabelledChip> out = training_prefix(chips, c.train_count, e.classes.size());
-  if (c.held_out >= 0) {
-    const std::string key(
-        targets::target_type_info(e.classes.at(static_cast<std::size_t>(c.held_out))).key);
-    std::erase_if(out, [&](const LabelledChip& l) { return l.label == key; });
+  std::vector<std::string> untrained;  // the held-out class and the novel ones
+  for (std::size_t k = 0; k < e.classes.size(); ++k) {
+    if (static_cast<int>(k) == c.held_out || k >= e.novel_from)
+      untrained.emplace_back(targets::target_type_info(e.classes[k]).key);
   }
+  std::erase_if(out, [&](const LabelledChip& l) {
+    return std::find(untrained.begin(), untrained.end(), l.label) != untrained.end();
+  });
   return out;
 }
 
@@ -426,6 +432,7 @@ void score_chip(ConditionResult& out, const SweepExperiment& e, const Model& m, 
     out.unknown_accepted += !r.unknown;
     return;
   }
+  if (truth >= e.novel_from) return;  // a novel type another condition tests
   const bool open_set = c.reject_quantile > 0.0;
   if (open_set) {
     ++out.known_n;

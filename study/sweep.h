@@ -28,8 +28,9 @@
 //   train_size  stability: training chips per class 5-320, at 5 cm.
 //   p           stability and speed: subspace dimension p 1-80, at 5 cm.
 //   open_set    open-set rejection on the seven targets of fig13: each type in turn is left out
-//               of training, and its test chips should be rejected as unknown; the known
-//               types' false-reject rate (5 and 15 cm).
+//               of training, and its test chips should be rejected as unknown; then the novel
+//               types (SweepSettings::novel), never trained; the known types' false-reject
+//               rate (5 and 15 cm).
 //   burial      stability: test targets buried by 0-50 % of their height (trained on proud
 //               ones), fig13's seven with the mine / non-mine decision, at 5 cm.
 //   fusion      highlight + shadow fusion (atr/fusion.h): the same objects (the four targets at
@@ -85,6 +86,9 @@ struct SweepSettings {
   std::vector<targets::TargetType> non_mine = {
       targets::TargetType::kLargeCuboid, targets::TargetType::kHemisphere,
       targets::TargetType::kSmallHemisphere, targets::TargetType::kBox};
+  // open_set's novel types: rendered and tested, never trained (default: the standing
+  // cylinder, unlike all of fig13's seven); empty: none
+  std::vector<targets::TargetType> novel = {targets::TargetType::kStandingCylinder};
   std::vector<render::DatasetSeabed> seabeds;  // must not be empty
   render::SonarDesc sonar;
   render::RendererKind renderer = render::RendererKind::kProfile;
@@ -136,7 +140,13 @@ struct SweepExperiment {
   int test_count = 100;                   // per class
   std::vector<std::string> seabed_names;  // the dataset's seabeds (ChipParams::seabed)
   std::vector<SweepCondition> conditions;
+  // classes from this index on are never trained (open_set's novel types): a condition that
+  // holds one of them out tests it as unknown, the others skip their chips
+  std::size_t novel_from = static_cast<std::size_t>(-1);
 };
+
+// Sec. 4.1.2: the mine-like Manta, Rockan and cylinder, then settings.non_mine.
+std::vector<targets::TargetType> fig13_classes(const SweepSettings& settings);
 
 std::vector<std::string> sweep_experiment_names();
 // Throws std::invalid_argument naming the allowed experiments for an unknown name.

@@ -73,6 +73,26 @@ std::vector<targets::TargetType> parse_non_mine(const std::string& text) {
   return out;
 }
 
+// --novel: target types never trained (open_set), none of fig13's seven; "none" for no novel type.
+std::vector<targets::TargetType> parse_novel(const std::string& text,
+                                             const std::vector<targets::TargetType>& trained) {
+  std::vector<targets::TargetType> out;
+  if (text == "none") return out;
+  for (const std::string& key : split_comma_list(text)) {
+    const auto t = targets::find_target_type(key);
+    if (!t) {
+      throw UsageError("--novel: unknown target type '" + key +
+                       "' (allowed: " + targets::target_type_keys_list() + ", or none)");
+    }
+    if (std::find(trained.begin(), trained.end(), *t) != trained.end()) {
+      throw UsageError("--novel: '" + key + "' is one of fig13's trained types");
+    }
+    if (std::find(out.begin(), out.end(), *t) == out.end()) out.push_back(*t);
+  }
+  if (out.empty()) throw UsageError("--novel: no target type given (or 'none')");
+  return out;
+}
+
 std::vector<render::DatasetSeabed> parse_seabeds(const std::string& text) {
   std::vector<render::DatasetSeabed> out;
   for (const std::string& item : split_comma_list(text)) {
@@ -399,6 +419,7 @@ int run_sweep(const std::vector<std::string>& argv) {
                          {"--out"},
                          {"--seabed"},
                          {"--non-mine"},
+                         {"--novel"},
                          {"--sonar"},
                          {"--no-plot", false},
                          {"--shadow-height", false},
@@ -420,6 +441,7 @@ int run_sweep(const std::vector<std::string>& argv) {
   s.p = static_cast<int>(args.get_int("--p", 1, 4096).value_or(atr::kDefaultSubspaceDim));
   if (const auto r = args.get("--resolutions-cm")) s.resolutions_cm = parse_resolutions_cm(*r);
   if (const auto n = args.get("--non-mine")) s.non_mine = parse_non_mine(*n);
+  if (const auto n = args.get("--novel")) s.novel = parse_novel(*n, study::fig13_classes(s));
   s.seabeds = parse_seabeds(args.get_or("--seabed", kDefaultSeabeds));
   s.renderer = renderer_option(args);
   s.preprocess = preprocess_options(args, &s.crop_auto);
@@ -517,8 +539,9 @@ experiments (--experiment, repeatable, or 'all'; default fig11):
   train_size  5-320 training chips per target, 5 cm
   p           subspace dimension 1-79 (below --train-count), 5 cm
   open_set    open-set rejection on fig13's seven targets: each left out of training in
-              turn (its chips should be called unknown), and none left out; the known
-              chips' false-reject rate; 5 and 15 cm (or --resolutions-cm)
+              turn (its chips should be called unknown), then each --novel type (never
+              trained), and none left out; the known chips' false-reject rate; 5 and 15 cm
+              (or --resolutions-cm)
   fusion      highlight + shadow fusion: the same objects (four targets at 25 m ground
               range) identified from the highlight chip, the shadow chip, and both (each
               model's distances normalised three ways, atr/fusion.h, and summed); 5-20 cm
@@ -551,6 +574,8 @@ options:
   --threads N          render threads (default: all cores)
   --out DIR            output folder (default sweep_out)
   --seabed LIST        seabed kinds: flat, ripples, clutter, rocky (default flat,ripples,clutter)
+  --novel LIST         open_set's types never trained, unlike the seven (default
+                       standing_cylinder; 'none' for none)
   --non-mine LIST      fig13's non-mine shapes (default: the paper's
                        large_cuboid,hemisphere,small_hemisphere,box)
   --sonar NAME|FILE    sonar preset or YAML (default pailhas_strip; bin and pulse set per R)

@@ -95,6 +95,11 @@ TEST_CASE("sweep: help and bad options", "[sweep_cli]") {
   CHECK(slurp(log).find("abc") != std::string::npos);
   CHECK(run_to_log("sweep --non-mine manta --out " + dir.file("o"), log) == 2);
   CHECK(slurp(log).find("mine-like") != std::string::npos);
+  CHECK(run_to_log("sweep --experiment open_set --novel hemisphere --out " + dir.file("o"), log) ==
+        2);
+  CHECK(slurp(log).find("trained") != std::string::npos);
+  CHECK(run_to_log("sweep --experiment open_set --novel tyre --out " + dir.file("o"), log) == 2);
+  CHECK(slurp(log).find("tyre") != std::string::npos);
 }
 
 TEST_CASE("sweep: highlights identify better at 5 cm than at 20 cm (Fig. 11 trend)",
@@ -189,4 +194,38 @@ TEST_CASE("sweep --shadow-height: training and test shadows are projected alike"
   CHECK(num(all, "n") == 120);
   CHECK(num(all, "error_pct") < 40.0);
   CHECK(rows.front().at("complete") == "1");
+}
+
+TEST_CASE("sweep open_set: a novel type is never trained and is scored only as unknown",
+          "[sweep_cli]") {
+  const sonarloop::testing::TempDir dir("sweep_cli_novel");
+  const std::string log = dir.file("log.txt");
+  REQUIRE(run_to_log("sweep --experiment open_set --resolutions-cm 20 --train-count 6 "
+                     "--test-count 4 --p 3 --no-plot --out " +
+                         dir.file("o"),
+                     log) == 0);
+  const auto rows = read_sweep_csv(dir.path() / "o" / "open_set.csv");
+  const auto get = [&](const std::string& series, const std::string& cls) -> const Row* {
+    for (const Row& r : rows) {
+      if (r.at("series") == series && r.at("class") == cls) return &r;
+    }
+    return nullptr;
+  };
+  // the model of all seven scores the seven types' chips only (the novel type's are skipped)
+  const Row* none = get("none held out", "all");
+  REQUIRE(none != nullptr);
+  CHECK(num(*none, "n") == 7 * 4);
+  CHECK(get("none held out", "unknown_accepted") == nullptr);
+  // the same model tests the standing cylinder's chips as unknown, and the seven as known
+  const Row* novel = get("held out: standing_cylinder", "unknown_accepted");
+  REQUIRE(novel != nullptr);
+  CHECK(num(*novel, "n") == 4);
+  const Row* novel_all = get("held out: standing_cylinder", "all");
+  REQUIRE(novel_all != nullptr);
+  CHECK(num(*novel_all, "n") == 7 * 4);
+  // a known type held out: six scored, its own chips as unknown
+  const Row* manta = get("held out: manta", "unknown_accepted");
+  REQUIRE(manta != nullptr);
+  CHECK(num(*manta, "n") == 4);
+  CHECK(num(*get("held out: manta", "all"), "n") == 6 * 4);
 }

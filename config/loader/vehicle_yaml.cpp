@@ -83,6 +83,11 @@ const NumberTable<AttitudeDesc>& attitude_numbers() {
            &AttitudeDesc::roll_time_constant_s, std::nullopt, "0 = no lag"},
           {"pitch_gain", "pitch_gain", YamlUnit::kSi, &AttitudeDesc::pitch_gain},
           {"max_pitch_deg", "max_pitch", YamlUnit::kDegree, &AttitudeDesc::max_pitch},
+          {"roll_amplitude_deg", "roll_amplitude", YamlUnit::kDegree,
+           &AttitudeDesc::roll_amplitude},
+          {"pitch_amplitude_deg", "pitch_amplitude", YamlUnit::kDegree,
+           &AttitudeDesc::pitch_amplitude},
+          {"wave_period_s", "wave_period_s", YamlUnit::kSi, &AttitudeDesc::wave_period_s},
       }};
   return table;
 }

@@ -48,6 +48,9 @@ Trajectory::Trajectory(const TrajectoryDesc& desc, const SeabedDepthFn& seabed_d
   path_ = plan_path(desc);
   duration_s_ = path_.length_m() / speed_m_s_;
   if (desc.sway.amplitude_m > 0.0) sway_omega_ = 2.0 * std::numbers::pi / desc.sway.period_s;
+  if (desc.attitude.roll_amplitude > 0.0 || desc.attitude.pitch_amplitude > 0.0) {
+    wave_omega_ = 2.0 * std::numbers::pi / desc.attitude.wave_period_s;
+  }
 
   // profile knots: a whole number of equal steps no longer than profile_step_m
   const double length = path_.length_m();
@@ -185,8 +188,21 @@ VehicleState Trajectory::state_at(SimTime t) const {
   state.yaw_rate = path_rate + (k != 0.0 ? k * (y_ddot / u) / (1.0 + q * q) : 0.0);
 
   const AttitudeDesc& a = desc_.attitude;
-  state.pose.pitch = std::clamp(a.pitch_gain * std::atan2(-w, u), -a.max_pitch, a.max_pitch);
-  state.pose.roll = roll_at(p.segment, s);
+  if (wave_omega_ == 0.0) {
+    state.pose.pitch = std::clamp(a.pitch_gain * std::atan2(-w, u), -a.max_pitch, a.max_pitch);
+    state.pose.roll = roll_at(p.segment, s);
+  } else {
+    // the wave-induced oscillation, pitch a quarter period ahead of roll
+    const double wave_phase = wave_omega_ * t_s;
+    double pitch = a.pitch_gain * std::atan2(-w, u);
+    if (a.pitch_amplitude != 0.0) pitch += a.pitch_amplitude * std::cos(wave_phase);
+    state.pose.pitch = std::clamp(pitch, -a.max_pitch, a.max_pitch);
+    double roll = roll_at(p.segment, s);
+    if (a.roll_amplitude != 0.0) {
+      roll = std::clamp(roll + a.roll_amplitude * std::sin(wave_phase), -a.max_roll, a.max_roll);
+    }
+    state.pose.roll = roll;
+  }
 
   if (!seabed_m_.empty() && t >= 0 && t <= end_time_) {
     // (s may pass the path length by rounding at t = end_time_)

@@ -31,6 +31,28 @@
 //   with φ = 0 before the start (the vehicle was flying straight) and φ_cmd = 0 after the end.
 //   So roll is continuous (no steps at segment joins) and reaches 95 % of a new bank in 3τ.
 //   g = 9.80665 m/s² (standard gravity, 3rd CGPM 1901).
+// * waves (optional; AttitudeDesc roll_amplitude, pitch_amplitude, wave_period_s): a vehicle
+//   near the surface in a regular swell is rocked by the wave's orbital motion, the water
+//   particles' velocity and the sea surface slope, at the wave encounter period T: the period at
+//   which the moving vehicle meets crests (the wave period Doppler-shifted by its speed along
+//   the wave direction; given directly here, so it does not change with the heading). The
+//   response is modelled as first order, linear and at a single frequency: first-order (Airy)
+//   wave theory gives a sinusoidal forcing of amplitude proportional to the wave height, and a
+//   linear vehicle answers it with a sinusoid at the same period, of amplitude the forcing times
+//   its response amplitude operator (here given directly as the angle amplitudes), with no
+//   harmonics and no transient. Its phase depends on how the forcing period compares with each
+//   mode's natural period and damping (in phase well below resonance, a quarter period behind
+//   at resonance, in antiphase well above), and roll and pitch have different natural periods,
+//   so the two are in general not in phase. The model takes pitch a quarter period ahead of
+//   roll: the two are then uncorrelated over a period (the mean of sin·cos is 0) and the vehicle
+//   axis traces an ellipse rather than rocking in one plane. With ω = 2π/T and t = t_s, the
+//   seconds since the mission start that the rest of state_at uses (also outside [0, duration]):
+//     roll  = clamp(φ_turn(t) + roll_amplitude·sin(ω·t), ±max_roll)
+//     pitch = clamp(θ_path(t) + pitch_amplitude·cos(ω·t), ±max_pitch)
+//   where φ_turn is the lagged turn roll and θ_path the flight-path pitch (gain applied) above.
+//   The waves add up to amplitude·ω to the roll and pitch rates; they do not move the vehicle
+//   (sway, above, is separate). An amplitude of 0 adds nothing: the state is then bit for bit
+//   that of the model without waves.
 //
 // Outside [0, duration_s()] the vehicle keeps going straight along the first / last heading at
 // the same speed; altitude is then unknown (NaN). In terrain following the depth profile is
@@ -104,6 +126,7 @@ class Trajectory {
   double radius_m_ = 0.0;
   double duration_s_ = 0.0;
   double sway_omega_ = 0.0;       // rad/s, 0 = no sway
+  double wave_omega_ = 0.0;       // rad/s, 0 = no wave-induced roll or pitch
   std::vector<double> seabed_m_;  // seabed depth at the profile knots (empty = unknown)
   double knot_step_m_ = 1.0;
   std::size_t pad_steps_ = 0;  // knots before s = 0 (and after the path end)

@@ -18,6 +18,9 @@ constexpr double kMaxStepS = 3600.0;  // noise and drift steps, the roll time co
 constexpr double kMinStepS = 1e-9;    // at least 1 ns: the steps are used as integer nanoseconds
 constexpr int kMaxLegs = 10000;
 constexpr double kMinPointSeparationM = 0.01;  // consecutive waypoints closer are an error
+constexpr double kMaxWaveAmplitudeRad = std::numbers::pi / 4;  // roll and pitch oscillation
+constexpr double kMinWavePeriodS = 1.0;    // shorter swells hardly move a vehicle
+constexpr double kMaxWavePeriodS = 600.0;  // far beyond any swell: longer is a trim change
 
 // One hard limit of validate(): a number field of a description D (its path below D), what is
 // allowed, and when the rule applies (nullptr = always). The tables below are the one source of
@@ -49,8 +52,8 @@ bool follows_terrain(const TrajectoryDesc& d) {
   return d.depth.mode == DepthMode::kAltitude;
 }
 
-// In the order validate() reports them. The sway keys are checked whatever the amplitude, so
-// that a description is valid or not independently of whether sway is switched on.
+// In the order validate() reports them. The sway and wave keys are checked whatever the
+// amplitudes, so that a description is valid or not independently of whether they are on.
 const std::vector<TrajectoryRule>& trajectory_rules() {
   using T = TrajectoryDesc;
   static const std::vector<TrajectoryRule> rules = {
@@ -110,6 +113,12 @@ const std::vector<TrajectoryRule>& trajectory_rules() {
        [](const T& d) { return d.attitude.pitch_gain; }},
       {"attitude.max_pitch", Limit::open(0.0, std::numbers::pi / 2, "rad"),
        [](const T& d) { return d.attitude.max_pitch; }},
+      {"attitude.roll_amplitude", Limit::closed(0.0, kMaxWaveAmplitudeRad, "rad"),
+       [](const T& d) { return d.attitude.roll_amplitude; }},
+      {"attitude.pitch_amplitude", Limit::closed(0.0, kMaxWaveAmplitudeRad, "rad"),
+       [](const T& d) { return d.attitude.pitch_amplitude; }},
+      {"attitude.wave_period_s", Limit::closed(kMinWavePeriodS, kMaxWavePeriodS, "s"),
+       [](const T& d) { return d.attitude.wave_period_s; }},
   };
   return rules;
 }

@@ -88,7 +88,8 @@ struct SwayDesc {
   double yaw_coupling = 0.0;
 };
 
-// Attitude model (trajectory.h): roll from the turn, pitch from the vertical velocity.
+// Attitude model (trajectory.h): roll from the turn, pitch from the vertical velocity, plus an
+// optional wave-induced oscillation of both.
 struct AttitudeDesc {
   // Roll command = roll_gain·atan(u²·κ / g) = roll_gain·atan(u·ψ̇ / g) (coordinated-turn bank).
   // 1 = the coordinated-turn bank, starboard down in a starboard turn; negative = rolls outboard.
@@ -101,6 +102,19 @@ struct AttitudeDesc {
   // In [0, 10]; typically 1-2.
   double pitch_gain = 1.0;
   double max_pitch = 0.5;  // |pitch| limit, rad, in (0, π/2); default ~29 degrees
+  // Wave-induced oscillation. A vehicle near the surface in a regular swell is rocked by the
+  // wave's orbital motion at the wave encounter period (the wave period as the moving vehicle
+  // meets the crests). Modelled as the first-order (linear) response to a single-frequency
+  // wave: one sinusoid per angle at that period, added to the turn roll and the flight-path
+  // pitch above, the sum then limited to ±max_roll / ±max_pitch:
+  //   roll  += roll_amplitude·sin(2π·t / wave_period_s)
+  //   pitch += pitch_amplitude·cos(2π·t / wave_period_s)
+  // (t in s since the mission start). Pitch leads roll by a quarter period, so that the two are
+  // not in phase (trajectory.h says why). validate() checks every field whatever the
+  // amplitudes, so that a description is valid or not independently of whether waves are on.
+  double roll_amplitude = 0.0;   // rad, in [0, π/4]; 0 = none; typically 0-0.1 (0-6 degrees)
+  double pitch_amplitude = 0.0;  // rad, in [0, π/4]; 0 = none; typically 0-0.05 (0-3 degrees)
+  double wave_period_s = 8.0;    // encounter period, s, in [1, 600]; typically 4-15 s
 };
 
 struct TrajectoryDesc {

@@ -109,6 +109,9 @@ void check_same_vehicle(const VehicleDesc& a, const VehicleDesc& b) {
   CHECK(ta.attitude.roll_time_constant_s == tb.attitude.roll_time_constant_s);
   CHECK(ta.attitude.pitch_gain == tb.attitude.pitch_gain);
   CHECK(ta.attitude.max_pitch == tb.attitude.max_pitch);
+  CHECK(ta.attitude.roll_amplitude == tb.attitude.roll_amplitude);
+  CHECK(ta.attitude.pitch_amplitude == tb.attitude.pitch_amplitude);
+  CHECK(ta.attitude.wave_period_s == tb.attitude.wave_period_s);
   const auto& na = a.nav;
   const auto& nb = b.nav;
   CHECK(na.position_noise_sd_m == nb.position_noise_sd_m);
@@ -137,8 +140,9 @@ const std::vector<std::string> kDepthKeys = {
     "mode",         "depth_m",     "altitude_m",           "max_climb_rate_m_s",
     "look_ahead_m", "min_depth_m", "vertical_smoothing_m", "profile_step_m"};
 const std::vector<std::string> kSwayKeys = {"amplitude_m", "period_s", "phase_deg", "yaw_coupling"};
-const std::vector<std::string> kAttitudeKeys = {"roll_gain", "max_roll_deg", "roll_time_constant_s",
-                                                "pitch_gain", "max_pitch_deg"};
+const std::vector<std::string> kAttitudeKeys = {
+    "roll_gain",     "max_roll_deg",       "roll_time_constant_s", "pitch_gain",
+    "max_pitch_deg", "roll_amplitude_deg", "pitch_amplitude_deg",  "wave_period_s"};
 const std::vector<std::string> kNavKeys = {"position_noise_m",
                                            "position_drift_m_per_sqrt_s",
                                            "heading_bias_deg",
@@ -208,6 +212,9 @@ trajectory:
     roll_time_constant_s: 2.5
     pitch_gain: 1.25
     max_pitch_deg: 35
+    roll_amplitude_deg: 4
+    pitch_amplitude_deg: 2.5
+    wave_period_s: 9.5
 nav:
   position_noise_m: 0.3
   position_drift_m_per_sqrt_s: 0.07
@@ -235,7 +242,7 @@ nav:
     t.depth.depth_m = 17.25;
     t.depth.profile_step_m = 0.25;
     t.sway = {0.75, 12.5, rad(-45), 0.5};
-    t.attitude = {-1.5, rad(25), 2.5, 1.25, rad(35)};
+    t.attitude = {-1.5, rad(25), 2.5, 1.25, rad(35), rad(4), rad(2.5), 9.5};
     auto& n = e.nav;
     n.position_noise_sd_m = 0.3;
     n.position_drift_m_per_sqrt_s = 0.07;
@@ -321,12 +328,17 @@ trajectory:
   speed_m_s: 20
   max_turn_rate_deg_s: 114.59155902616465
   attitude: {roll_gain: -10, max_roll_deg: 89.99999999999999, pitch_gain: 10,
-             roll_time_constant_s: 3600}
+             roll_time_constant_s: 3600, roll_amplitude_deg: 45, pitch_amplitude_deg: 45,
+             wave_period_s: 600}
 nav: {heading_bias_deg: -180, noise_step_s: 1e-9, drift_step_s: 3600,
       speed_scale_error: -0.49999999999999994}
 )");
     CHECK(v.trajectory.max_turn_rate_rad_s == 2.0);
     CHECK(v.trajectory.attitude.max_roll < std::numbers::pi / 2);
+    CHECK(v.trajectory.attitude.roll_amplitude == std::numbers::pi / 4);
+    CHECK(v.trajectory.attitude.pitch_amplitude == std::numbers::pi / 4);
+    CHECK(parse_ok("trajectory: {attitude: {wave_period_s: 1}}\n")
+              .trajectory.attitude.wave_period_s == 1);
     CHECK(v.nav.heading_bias == -std::numbers::pi);
     CHECK(parse_ok("nav: {heading_bias_deg: 180}\n").nav.heading_bias == std::numbers::pi);
     CHECK(vehicle::validate(v).empty());
@@ -462,7 +474,8 @@ TEST_CASE("vehicle_loader: unknown keys, at every level, with suggestions") {
   i = expect_vehicle_error("trajectory: {attitude: {max_roll: 10}}\n",
                            "trajectory.attitude.max_roll",
                            {"allowed: roll_gain, max_roll_deg, roll_time_constant_s, pitch_gain, "
-                            "max_pitch_deg"});
+                            "max_pitch_deg, roll_amplitude_deg, pitch_amplitude_deg, "
+                            "wave_period_s"});
   CHECK(i.suggestion == "max_roll_deg");
   i = expect_vehicle_error(
       "nav: {heading_noise_rad: 0.1}\n", "nav.heading_noise_rad",
@@ -600,6 +613,16 @@ TEST_CASE("vehicle_loader: out-of-range values name the file, key, value and ran
        "0 .. 10"},
       {"trajectory: {attitude: {max_pitch_deg: 95}}\n", "trajectory.attitude.max_pitch_deg", "95",
        "> 0 and < 90"},
+      {"trajectory: {attitude: {roll_amplitude_deg: 50}}\n",
+       "trajectory.attitude.roll_amplitude_deg", "50", "0 .. 45"},
+      {"trajectory: {attitude: {roll_amplitude_deg: -1}}\n",
+       "trajectory.attitude.roll_amplitude_deg", "-1", "0 .. 45"},
+      {"trajectory: {attitude: {pitch_amplitude_deg: 45.5}}\n",
+       "trajectory.attitude.pitch_amplitude_deg", "45.5", "0 .. 45"},
+      {"trajectory: {attitude: {wave_period_s: 0.5}}\n", "trajectory.attitude.wave_period_s", "0.5",
+       "1 .. 600"},
+      {"trajectory: {attitude: {wave_period_s: 601}}\n", "trajectory.attitude.wave_period_s", "601",
+       "1 .. 600"},
       {"nav: {position_noise_m: -0.1}\n", "nav.position_noise_m", "-0.1", ">= 0"},
       {"nav: {position_drift_m_per_sqrt_s: -1}\n", "nav.position_drift_m_per_sqrt_s", "-1", ">= 0"},
       {"nav: {heading_bias_deg: 180.5}\n", "nav.heading_bias_deg", "180.5", "-180 .. 180"},
@@ -655,12 +678,32 @@ TEST_CASE("vehicle_loader: validate()'s limits are reported at the YAML key, in 
           "allowed: > 0 and < 90");
     CHECK(e.first().line == 3);
   }
+  // the wave amplitude, in degrees too; the period in seconds
+  try {
+    parse_vehicle("trajectory:\n  attitude:\n    roll_amplitude_deg: 50\n", "vehicle.yaml");
+    FAIL("accepted");
+  } catch (const ConfigError& e) {
+    CHECK(std::string(e.what()) ==
+          "vehicle.yaml: trajectory.attitude.roll_amplitude_deg: 50 is out of range (line 3, "
+          "column 25); allowed: 0 .. 45");
+  }
+  try {
+    parse_vehicle("trajectory:\n  attitude:\n    wave_period_s: 0.5\n", "vehicle.yaml");
+    FAIL("accepted");
+  } catch (const ConfigError& e) {
+    CHECK(std::string(e.what()) ==
+          "vehicle.yaml: trajectory.attitude.wave_period_s: 0.5 is out of range (line 3, "
+          "column 20); allowed: 1 .. 600");
+  }
   // a value that is not a number is told the same range
   expect_vehicle_error("trajectory: {attitude: {max_pitch_deg: steep}}\n",
                        "trajectory.attitude.max_pitch_deg",
                        {"'steep' is not a number", "allowed: a number > 0 and < 90"});
   expect_vehicle_error("nav: {heading_bias_deg: [1]}\n", "nav.heading_bias_deg",
                        {"allowed: a number -180 .. 180"});
+  expect_vehicle_error("trajectory: {attitude: {wave_period_s: long}}\n",
+                       "trajectory.attitude.wave_period_s",
+                       {"'long' is not a number", "allowed: a number 1 .. 600"});
   // a bound with no short decimal in degrees is also given in SI
   expect_vehicle_error("trajectory: {max_turn_rate_deg_s: 120}\n", "trajectory.max_turn_rate_deg_s",
                        {"120 is out of range (line 1, column 35)",
@@ -1048,6 +1091,9 @@ TEST_CASE("vehicle_loader: format_vehicle_yaml writes the keys of the kind and r
   d.trajectory.start_heading = 0.1;  // no short decimal in degrees
   d.trajectory.max_turn_rate_rad_s = rad(15);
   d.trajectory.attitude.max_roll = 0.3;
+  d.trajectory.attitude.roll_amplitude = rad(5);
+  d.trajectory.attitude.pitch_amplitude = 0.05;  // no short decimal in degrees
+  d.trajectory.attitude.wave_period_s = 6.5;
   d.nav.heading_bias = rad(0.5);
   d.nav.heading_noise_sd = 1e-4;
   const std::string yaml = format_vehicle_yaml(d, 2);
@@ -1056,6 +1102,10 @@ TEST_CASE("vehicle_loader: format_vehicle_yaml writes the keys of the kind and r
   CHECK(contains(yaml, "\n    waypoints_m: [[1.5, 2.25], [-3, 4]]\n"));
   CHECK(contains(yaml, "\n    max_turn_rate_deg_s: 15\n"));
   CHECK(contains(yaml, "\n    heading_bias_deg: 0.5\n"));
+  CHECK(contains(yaml,
+                 "\n      max_pitch_deg: 28.64788975654116\n      roll_amplitude_deg: 5\n"
+                 "      pitch_amplitude_deg: 2.864788975654116\n      wave_period_s: 6.5\n"
+                 "  nav:\n"));
   CHECK_FALSE(contains(yaml, "length_m"));
   CHECK_FALSE(contains(yaml, "lawnmower"));
   CHECK_FALSE(contains(yaml, "altitude_m"));
@@ -1081,6 +1131,9 @@ TEST_CASE("vehicle_loader: format_vehicle_yaml writes the keys of the kind and r
   CHECK(contains(def, "max_turn_rate_deg_s: 5.729577951308232\n"));
   CHECK(contains(def, "max_roll_deg: 20.05352282957881\n"));
   CHECK(contains(def, "max_pitch_deg: 28.64788975654116\n"));
+  CHECK(contains(def,
+                 "\n    roll_amplitude_deg: 0\n    pitch_amplitude_deg: 0\n"
+                 "    wave_period_s: 8\nnav:\n"));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1197,6 +1250,9 @@ class VehicleGenerator {
         {"roll_time_constant_s", {Leaf::kReal, 0, 3600}},
         {"pitch_gain", {Leaf::kReal, 0, 10}},
         {"max_pitch_deg", {Leaf::kReal, 0, 90}},
+        {"roll_amplitude_deg", {Leaf::kReal, 0, 45}},
+        {"pitch_amplitude_deg", {Leaf::kReal, 0, 45}},
+        {"wave_period_s", {Leaf::kReal, 1, 600}},
         {"position_noise_m", {Leaf::kReal, 0, kInf}},
         {"position_drift_m_per_sqrt_s", {Leaf::kReal, 0, kInf}},
         {"heading_bias_deg", {Leaf::kReal, -180, 180}},
@@ -1358,6 +1414,10 @@ class VehicleGenerator {
              0, 3600);
       number(an.children, "pitch_gain", a.pitch_gain, 1, 0, 10, false, false, 0, 10);
       number(an.children, "max_pitch_deg", a.max_pitch, deg, 0, 90, true, true, 0, 90);
+      number(an.children, "roll_amplitude_deg", a.roll_amplitude, deg, 0, 45, false, false, 0, 45);
+      number(an.children, "pitch_amplitude_deg", a.pitch_amplitude, deg, 0, 45, false, false, 0,
+             45);
+      number(an.children, "wave_period_s", a.wave_period_s, 1, 1, 600, false, false, 1, 600);
       tm.push_back(an);
     }
     if (!tm.empty() || rng_.uniform() < 0.5) root.push_back(traj);

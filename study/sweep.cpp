@@ -167,9 +167,13 @@ std::vector<TargetType> fig13_classes(const SweepSettings& s) {
   return out;
 }
 
+bool is_fusion(const SweepExperiment& e) {
+  return !e.conditions.empty() && e.conditions.front().fusion != FusionInput::kNone;
+}
+
 std::vector<std::string> sweep_experiment_names() {
-  return {"fig11",  "fig13",      "fig15", "aspect",   "snr",    "altitude",
-          "burial", "train_size", "p",     "open_set", "fusion", "ablation"};
+  return {"fig11",      "fig13", "fig15",    "aspect", "snr",      "altitude", "burial",
+          "train_size", "p",     "open_set", "fusion", "fusion13", "ablation"};
 }
 
 SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettings& s) {
@@ -267,8 +271,13 @@ SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettin
         e.conditions.push_back(c);
       }
     }
-  } else if (name == "fusion") {
+  } else if (name == "fusion" || name == "fusion13") {
     e.title = "Highlight + shadow fusion: the same objects from either chip and from both";
+    if (name == "fusion13") {  // fig13's seven, with the mine / non-mine decision
+      e.title += " (Fig. 13's seven)";
+      e.classes = fig13_classes(s);
+      e.mine_groups = true;
+    }
     const std::vector<double> res =
         s.resolutions_cm.empty() ? std::vector<double>{5.0, 10.0, 15.0, 20.0} : s.resolutions_cm;
     for (double cm : res) {

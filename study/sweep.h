@@ -149,6 +149,8 @@ struct SweepExperiment {
 std::vector<targets::TargetType> fig13_classes(const SweepSettings& settings);
 
 std::vector<std::string> sweep_experiment_names();
+// fusion and fusion13: a highlight and a shadow chip per object (FusionInput conditions)
+bool is_fusion(const SweepExperiment& e);
 // Throws std::invalid_argument naming the allowed experiments for an unknown name.
 SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettings& settings);
 

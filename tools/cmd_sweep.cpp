@@ -352,6 +352,9 @@ bool run_fusion_experiment(const study::SweepExperiment& e, RunContext& ctx,
                 atr::add_look(ch.model(), *h, cond.fusion_norm, fused);
                 atr::add_look(cs.model(), cs.result(), cond.fusion_norm, fused);
                 answer.class_index = atr::fused_decision(fused);
+                // the mine / non-mine decision is the fused class's group (Sec. 4.1.2)
+                answer.mine_like =
+                    ch.model().classes.at(static_cast<std::size_t>(answer.class_index)).mine_like;
               }
               study::score_chip(r, e, ch.model(), truth, c.params.aspect_deg, c.params.seabed,
                                 answer);
@@ -386,7 +389,7 @@ double experiment_chips(const study::SweepExperiment& e) {
     total += static_cast<double>(g.resolutions_m.size()) * static_cast<double>(e.classes.size()) *
              (g.train_count + e.test_count);
   }
-  return e.name == "fusion" ? 2.0 * total : total;  // a highlight and a shadow chip per object
+  return study::is_fusion(e) ? 2.0 * total : total;  // a highlight and a shadow chip per object
 }
 
 bool matplotlib_available(const std::string& python) {
@@ -488,8 +491,8 @@ int run_sweep(const std::vector<std::string>& argv) {
       std::fprintf(stderr, "sonarloop sweep: %s: %s (%zu conditions)\n", e.name.c_str(),
                    e.title.c_str(), e.conditions.size());
       std::vector<study::ConditionResult> results;
-      const bool done = e.name == "fusion" ? run_fusion_experiment(e, ctx, results)
-                                           : run_experiment(e, ctx, results);
+      const bool done = study::is_fusion(e) ? run_fusion_experiment(e, ctx, results)
+                                            : run_experiment(e, ctx, results);
       if (!done) {
         stopped = true;
         break;
@@ -545,6 +548,8 @@ experiments (--experiment, repeatable, or 'all'; default fig11):
   fusion      highlight + shadow fusion: the same objects (four targets at 25 m ground
               range) identified from the highlight chip, the shadow chip, and both (each
               model's distances normalised three ways, atr/fusion.h, and summed); 5-20 cm
+  fusion13    the same with fig13's seven targets and the mine / non-mine decision of the
+              fused class
   ablation    chip pre-processing before eq. 9 (crop to the chip centre, multilook
               speckle averaging, levels against the seabed), each alone and combined, at
               5 and 15 cm (or --resolutions-cm), the four targets' highlights

@@ -345,7 +345,7 @@ def main(argv):
             plot_aspect(rows, out_dir)
         elif name == "ablation":
             plot_ablation(rows, out_dir)
-        elif name == "fusion":
+        elif name in ("fusion", "fusion13"):
             plot_overall(name, rows, out_dir)
         elif name == "open_set":
             plot_overall(name, rows, out_dir, extra=("unknown_accepted", "false_reject"))

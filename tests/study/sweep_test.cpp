@@ -220,12 +220,17 @@ TEST_CASE("ablation: every pre-processing variant at each resolution, labelled",
   CHECK(g[0].resolutions_m.size() == 2);
 }
 
-TEST_CASE("open_set: each of the seven held out in turn; scoring and rows", "[sweep]") {
+TEST_CASE("open_set: each of the seven held out in turn, then the novel type; scoring and rows",
+          "[sweep]") {
   SweepSettings s = settings();
   s.resolutions_cm = {5};
   const SweepExperiment e = make_sweep_experiment("open_set", s);
-  REQUIRE(e.classes.size() == 7);
-  REQUIRE(e.conditions.size() == 8);  // none held out, then each of the seven
+  REQUIRE(e.classes.size() == 8);  // fig13's seven, then the novel standing cylinder
+  CHECK(e.classes.back() == TargetType::kStandingCylinder);
+  CHECK(e.novel_from == 7);
+  REQUIRE(e.conditions.size() == 9);  // none held out, each of the seven, the novel type
+  CHECK(e.conditions[8].held_out == 7);
+  CHECK(e.conditions[8].series == "held out: standing_cylinder");
   CHECK(e.conditions[0].held_out == -1);
   CHECK(e.conditions[0].series == "none held out");
   CHECK(e.conditions[2].held_out == 1);
@@ -246,7 +251,8 @@ TEST_CASE("open_set: each of the seven held out in turn; scoring and rows", "[sw
   CHECK(train.size() == 3 * 6);
   CHECK(std::none_of(train.begin(), train.end(),
                      [](const LabelledChip& l) { return l.label == "rockan"; }));
-  CHECK(training_set(chips, e, e.conditions[0]).size() == 3 * 7);
+  CHECK(training_set(chips, e, e.conditions[0]).size() == 3 * 7);  // never the novel type
+  CHECK(training_set(chips, e, e.conditions[8]).size() == 3 * 7);
 
   // a model of the six others; its predictions gain an "unknown" column
   std::vector<std::string> names;
@@ -264,18 +270,40 @@ TEST_CASE("open_set: each of the seven held out in turn; scoring and rows", "[sw
   score_chip(r, e, m, 1, 0.0, 0, c);  // rockan (held out), rejected: right
   c.unknown = false;
   score_chip(r, e, m, 1, 0.0, 0, c);  // rockan, accepted as manta: wrong
+  score_chip(r, e, m, 7, 0.0, 0, c);  // the novel type: another condition's, not scored here
   CHECK(r.known_n == 2);
   CHECK(r.known_rejected == 1);
   CHECK(r.unknown_n == 2);
   CHECK(r.unknown_accepted == 1);
   CHECK(r.confusion.total() == 2);  // held-out chips are not in the confusion matrix
   const auto rows = lines(results_csv(e, {r}));
-  // 7 classes, all, false_reject, unknown_accepted
-  REQUIRE(rows.size() == 1 + 7 + 1 + 2);
+  // 8 classes, all, false_reject, unknown_accepted
+  REQUIRE(rows.size() == 1 + 8 + 1 + 2);
   CHECK(rows[1].find(",manta,2,1,50.0000,") != std::string::npos);
-  CHECK(rows[8].find(",all,2,1,50.0000,") != std::string::npos);
-  CHECK(rows[9].find(",false_reject,2,1,50.0000,") != std::string::npos);
-  CHECK(rows[10].find(",unknown_accepted,2,1,50.0000,") != std::string::npos);
+  CHECK(rows[9].find(",all,2,1,50.0000,") != std::string::npos);
+  CHECK(rows[10].find(",false_reject,2,1,50.0000,") != std::string::npos);
+  CHECK(rows[11].find(",unknown_accepted,2,1,50.0000,") != std::string::npos);
+
+  // the novel type held out: the model of all seven, the novel chips are the unknown ones
+  std::vector<std::string> seven;
+  for (std::size_t k = 0; k < 7; ++k)
+    seven.emplace_back(targets::target_type_info(e.classes[k]).key);
+  const Model m7 = toy_model(seven);
+  ConditionResult rn(8, e, m7);
+  Classification n;
+  n.class_index = 6;                    // box
+  score_chip(rn, e, m7, 7, 0.0, 0, n);  // standing cylinder accepted as a box: wrong
+  n.unknown = true;
+  score_chip(rn, e, m7, 7, 0.0, 0, n);  // rejected: right
+  CHECK(rn.unknown_n == 2);
+  CHECK(rn.unknown_accepted == 1);
+  CHECK(rn.confusion.total() == 0);
+
+  // no novel type: the seven only, as before
+  s.novel.clear();
+  const SweepExperiment e7 = make_sweep_experiment("open_set", s);
+  CHECK(e7.classes.size() == 7);
+  CHECK(e7.conditions.size() == 8);
 }
 
 TEST_CASE("fusion: the same objects in both datasets; one series per input and norm", "[sweep]") {
@@ -283,6 +311,15 @@ TEST_CASE("fusion: the same objects in both datasets; one series per input and n
   s.resolutions_cm = {10};
   const SweepExperiment e = make_sweep_experiment("fusion", s);
   REQUIRE(e.conditions.size() == 5);  // highlight, shadow, both x 3 normalisations
+  CHECK(is_fusion(e));
+  CHECK(e.classes.size() == 4);
+  CHECK_FALSE(e.mine_groups);
+  const SweepExperiment e13 = make_sweep_experiment("fusion13", s);  // fig13's seven
+  CHECK(is_fusion(e13));
+  CHECK(e13.classes == fig13_classes(s));
+  CHECK(e13.mine_groups);
+  CHECK(e13.conditions.size() == 5);
+  CHECK_FALSE(is_fusion(make_sweep_experiment("fig13", s)));
   CHECK(e.conditions[0].fusion == FusionInput::kHighlight);
   CHECK(e.conditions[1].fusion == FusionInput::kShadow);
   CHECK(e.conditions[3].series == "both (model_typical)");

@@ -19,6 +19,8 @@ Studies:
   nav_noise   vehicle.nav.position_noise_m 0, 0.1, 0.3, 1, 3 m (white; drift 0)
   nav_drift   vehicle.nav.position_drift_m_per_sqrt_s 0, 0.05, 0.2, 0.5, 1 (noise 0.1 m)
   altitude    vehicle.trajectory.depth.altitude_m 3, 5, 7.5, 10, 15 m (terrain following)
+  roll        vehicle.trajectory.attitude.roll_amplitude_deg 0, 2, 5, 10, 20 (waves, 8 s period)
+  pitch       vehicle.trajectory.attitude.pitch_amplitude_deg 0, 1, 2, 5, 10 (waves, 8 s period)
   range       the straight track moved sideways (start_m east -40 .. 40 m in 10 m steps), so
               that each target is seen at another ground range; reported per 10 m bin of the
               target's ground range from the track (0-10, ..., 40-50 m), not per offset
@@ -55,11 +57,19 @@ STUDIES = {
     "altitude": ("altitude_m", [3.0, 5.0, 7.5, 10.0, 15.0],
                  lambda s, v: s["vehicle"]["trajectory"].setdefault("depth", {}).update(
                      mode="altitude", altitude_m=v)),
+    "roll": ("roll_amplitude_deg", [0.0, 2.0, 5.0, 10.0, 20.0],
+             lambda s, v: attitude(s).update(roll_amplitude_deg=v, wave_period_s=8.0)),
+    "pitch": ("pitch_amplitude_deg", [0.0, 1.0, 2.0, 5.0, 10.0],
+              lambda s, v: attitude(s).update(pitch_amplitude_deg=v, wave_period_s=8.0)),
     "range": ("track_east_m", [-40.0, -30.0, -20.0, -10.0, 0.0, 10.0, 20.0, 30.0, 40.0],
               lambda s, v: straight(s).update(start_m=[straight(s).get("start_m", [0.0, 0.0])[0], v])),
 }
 # the range study's bins of target ground range (m): [lo, hi)
 RANGE_BINS = [(0.0, 10.0), (10.0, 20.0), (20.0, 30.0), (30.0, 40.0), (40.0, 50.0)]
+
+
+def attitude(s):
+    return s["vehicle"]["trajectory"].setdefault("attitude", {})
 
 
 def straight(s):

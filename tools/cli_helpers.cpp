@@ -3,10 +3,16 @@
 #include <signal.h>
 
 #include <atomic>
+#include <filesystem>
+#include <set>
 #include <sstream>
+
+#include "config/loader/scenario_loader.h"
 
 namespace sonarloop::tools {
 namespace {
+
+namespace fs = std::filesystem;
 
 std::atomic<int> g_stop_signal{0};  // the signal that asked to stop, 0: none
 static_assert(std::atomic<int>::is_always_lock_free, "set from a signal handler");
@@ -16,6 +22,36 @@ void on_stop_flag_signal(int sig) {
 }
 
 }  // namespace
+
+bool is_yaml_path(const std::string& s) {
+  const auto ext = fs::path(s).extension().string();
+  return ext == ".yaml" || ext == ".yml";
+}
+
+std::vector<render::DatasetSeabed> dataset_seabeds_option(const std::string& text) {
+  std::vector<render::DatasetSeabed> out;
+  std::set<std::string> names;
+  for (const std::string& item : split_comma_list(text)) {
+    render::DatasetSeabed s;
+    if (is_yaml_path(item)) {
+      s.desc = config::load_scenario(item).scene;  // ConfigError names the file and key
+      s.name = fs::path(item).stem().string();
+    } else {
+      try {
+        s = render::builtin_dataset_seabed(item);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--seabed: ") + e.what() +
+                         "; or give a scenario file NAME.yaml");
+      }
+    }
+    if (!names.insert(s.name).second) {
+      throw UsageError("--seabed: the seabed '" + s.name + "' is listed twice");
+    }
+    out.push_back(std::move(s));
+  }
+  if (out.empty()) throw UsageError("--seabed: no seabed given");
+  return out;
+}
 
 std::vector<std::string> split_comma_list(const std::string& text) {
   std::vector<std::string> out;

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "atr/chip_preprocess.h"
+#include "sim/render/chip_renderer.h"
 #include "sim/render/ping_renderer.h"
 #include "tools/args.h"
 
@@ -19,6 +20,14 @@ void install_stop_flag();
 bool stop_requested();
 // The signal that asked to stop (SIGINT or SIGTERM), 0 if none.
 int stop_signal();
+
+// Whether a command-line value names a YAML file (ends in .yaml or .yml) rather than a preset.
+bool is_yaml_path(const std::string& s);
+
+// --seabed of dataset and sweep: a comma list of built-in seabed kinds (flat, ripples, clutter,
+// rocky) or scenario files NAME.yaml (their seed, water and seabed; named NAME). Throws
+// UsageError for an unknown kind or a name listed twice (a bad file: config::ConfigError).
+std::vector<render::DatasetSeabed> dataset_seabeds_option(const std::string& text);
 
 // --renderer profile|raytrace (default profile); a UsageError names the choices.
 render::RendererKind renderer_option(const Args& args);

@@ -61,37 +61,6 @@ std::vector<targets::TargetType> parse_classes(const std::string& text) {
   return out;
 }
 
-bool is_yaml_path(const std::string& s) {
-  const auto ext = fs::path(s).extension().string();
-  return ext == ".yaml" || ext == ".yml";
-}
-
-// A built-in kind, or the seed, water and seabed of a scenario file.
-std::vector<render::DatasetSeabed> parse_seabeds(const std::string& text) {
-  std::vector<render::DatasetSeabed> out;
-  std::set<std::string> names;
-  for (const std::string& item : split_comma_list(text)) {
-    render::DatasetSeabed s;
-    if (is_yaml_path(item)) {
-      s.desc = config::load_scenario(item).scene;  // ConfigError names the file and key
-      s.name = fs::path(item).stem().string();
-    } else {
-      try {
-        s = render::builtin_dataset_seabed(item);
-      } catch (const std::invalid_argument& e) {
-        throw UsageError(std::string("--seabed: ") + e.what() +
-                         "; or give a scenario file NAME.yaml");
-      }
-    }
-    if (!names.insert(s.name).second) {
-      throw UsageError("--seabed: the seabed '" + s.name + "' is listed twice");
-    }
-    out.push_back(std::move(s));
-  }
-  if (out.empty()) throw UsageError("--seabed: no seabed given");
-  return out;
-}
-
 chips::ChipLevels parse_levels(const std::string& text) {
   double lo = 0.0, hi = 0.0;
   char tail = 0;
@@ -368,7 +337,7 @@ int run_dataset(const std::vector<std::string>& argv) {
   spec.sonar =
       is_yaml_path(sonar_arg) ? config::load_sonar(sonar_arg) : config::builtin_sonar(sonar_arg);
   if (const auto l = args.get("--levels-db")) spec.levels = parse_levels(*l);
-  spec.seabeds = parse_seabeds(args.get_or("--seabed", kDefaultSeabeds));
+  spec.seabeds = dataset_seabeds_option(args.get_or("--seabed", kDefaultSeabeds));
   spec.renderer = renderer_option(args);
 
   // under mpirun: rank 0 writes the dataset, the others render their share (tools/chip_ranks.h)

@@ -93,19 +93,6 @@ std::vector<targets::TargetType> parse_novel(const std::string& text,
   return out;
 }
 
-std::vector<render::DatasetSeabed> parse_seabeds(const std::string& text) {
-  std::vector<render::DatasetSeabed> out;
-  for (const std::string& item : split_comma_list(text)) {
-    try {
-      out.push_back(render::builtin_dataset_seabed(item));
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--seabed: ") + e.what());
-    }
-  }
-  if (out.empty()) throw UsageError("--seabed: no seabed given");
-  return out;
-}
-
 void write_file(const fs::path& path, const std::string& text) {
   const fs::path tmp = path.string() + ".tmp";
   {
@@ -445,15 +432,14 @@ int run_sweep(const std::vector<std::string>& argv) {
   if (const auto r = args.get("--resolutions-cm")) s.resolutions_cm = parse_resolutions_cm(*r);
   if (const auto n = args.get("--non-mine")) s.non_mine = parse_non_mine(*n);
   if (const auto n = args.get("--novel")) s.novel = parse_novel(*n, study::fig13_classes(s));
-  s.seabeds = parse_seabeds(args.get_or("--seabed", kDefaultSeabeds));
+  s.seabeds = dataset_seabeds_option(args.get_or("--seabed", kDefaultSeabeds));
   s.renderer = renderer_option(args);
   s.preprocess = preprocess_options(args, &s.crop_auto);
   s.shadow_height = args.has("--shadow-height");
   s.reject_quantile = args.get_double("--reject-quantile", 0.01, 0.9999).value_or(0.95);
   const std::string sonar_arg = args.get_or("--sonar", std::string(config::kDefaultSonarPreset));
-  const std::string ext = fs::path(sonar_arg).extension().string();
-  s.sonar = ext == ".yaml" || ext == ".yml" ? config::load_sonar(sonar_arg)
-                                            : config::builtin_sonar(sonar_arg);
+  s.sonar =
+      is_yaml_path(sonar_arg) ? config::load_sonar(sonar_arg) : config::builtin_sonar(sonar_arg);
   ctx.threads =
       static_cast<int>(args.get_int("--threads", 1, 256).value_or(mpi::default_threads()));
   ctx.out_dir = args.get_or("--out", "sweep_out");
@@ -578,7 +564,8 @@ options:
   --seed S             training dataset seed; the test set uses S + 1 (default 0)
   --threads N          render threads (default: all cores)
   --out DIR            output folder (default sweep_out)
-  --seabed LIST        seabed kinds: flat, ripples, clutter, rocky (default flat,ripples,clutter)
+  --seabed LIST        seabed kinds: flat, ripples, clutter, rocky, or scenario files
+                       NAME.yaml (their seabed) (default flat,ripples,clutter)
   --novel LIST         open_set's types never trained, unlike the seven (default
                        standing_cylinder; 'none' for none)
   --non-mine LIST      fig13's non-mine shapes (default: the paper's

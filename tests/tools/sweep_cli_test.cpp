@@ -100,6 +100,12 @@ TEST_CASE("sweep: help and bad options", "[sweep_cli]") {
   CHECK(slurp(log).find("trained") != std::string::npos);
   CHECK(run_to_log("sweep --experiment open_set --novel tyre --out " + dir.file("o"), log) == 2);
   CHECK(slurp(log).find("tyre") != std::string::npos);
+  // --seabed takes scenario files too (as dataset does): a missing one is named
+  CHECK(run_to_log("sweep --seabed " + dir.file("none.yaml") + " --out " + dir.file("o"), log) !=
+        0);
+  CHECK(slurp(log).find("none.yaml") != std::string::npos);
+  CHECK(run_to_log("sweep --seabed flat,flat --out " + dir.file("o"), log) == 2);
+  CHECK(slurp(log).find("twice") != std::string::npos);
 }
 
 TEST_CASE("sweep: highlights identify better at 5 cm than at 20 cm (Fig. 11 trend)",

@@ -135,20 +135,25 @@ void RenderQueue::work(int worker) {
       state_[s] = State::kFree;
       return fail(lock, what);
     }
-    // running mean over about the last 8 pings (the first ping sets it); one slow ping (a tile
-    // made on the spot) counts at most 4 times the mean, so it does not make the workers skip
-    // pings they could deliver
-    if (render_mean_ns_ == 0) {
-      render_mean_ns_ = std::max<std::int64_t>(slot.produce_ns, 1);
-    } else {
-      const std::int64_t sample = std::min(slot.produce_ns, 4 * render_mean_ns_);
-      render_mean_ns_ = std::max<std::int64_t>(1, render_mean_ns_ + (sample - render_mean_ns_) / 8);
-    }
-    produced_.fetch_add(1);
-    produce_total_ns_.fetch_add(slot.produce_ns);
-    std::int64_t prev = produce_max_ns_.load();
-    while (slot.produce_ns > prev &&
-           !produce_max_ns_.compare_exchange_weak(prev, slot.produce_ns)) {
+    // Only a ping that was rendered counts: a period without one (a stale external pose) takes
+    // no render time and must not pull the mean down or show in the render statistics.
+    if (slot.emitted) {
+      // running mean over about the last 8 pings (the first ping sets it); one slow ping (a
+      // tile made on the spot) counts at most 4 times the mean, so it does not make the
+      // workers skip pings they could deliver
+      if (render_mean_ns_ == 0) {
+        render_mean_ns_ = std::max<std::int64_t>(slot.produce_ns, 1);
+      } else {
+        const std::int64_t sample = std::min(slot.produce_ns, 4 * render_mean_ns_);
+        render_mean_ns_ =
+            std::max<std::int64_t>(1, render_mean_ns_ + (sample - render_mean_ns_) / 8);
+      }
+      produced_.fetch_add(1);
+      produce_total_ns_.fetch_add(slot.produce_ns);
+      std::int64_t prev = produce_max_ns_.load();
+      while (slot.produce_ns > prev &&
+             !produce_max_ns_.compare_exchange_weak(prev, slot.produce_ns)) {
+      }
     }
     slot.index = k;  // the producer is done with the slot: it is the queue's again
     if (released_[s]) {

@@ -110,6 +110,8 @@ class RenderQueue {
 
   int slots() const { return static_cast<int>(slots_.size()); }
   int threads() const { return threads_; }
+  // Pings rendered (slots produced with emitted set; a period without a ping is not counted) and
+  // their total and largest production times.
   std::uint64_t produced() const { return produced_.load(); }
   std::int64_t produce_total_ns() const { return produce_total_ns_.load(); }
   std::int64_t produce_max_ns() const { return produce_max_ns_.load(); }

@@ -282,3 +282,30 @@ TEST_CASE(
     CHECK(done[i].second > give_up(done[i].first - 1));
   }
 }
+
+TEST_CASE("RenderQueue: periods without a ping (stale pose) are not counted as rendered") {
+  // every third period has no ping (as a stale external pose gives), produced in no time
+  class GapProducer final : public PingProducer {
+   public:
+    void produce(std::int64_t k, int, PingSlot& slot) override {
+      slot.emitted = k % 3 != 0;
+      slot.produce_ns = slot.emitted ? 1'000'000 : 0;
+      slot.packet_size = slot.emitted ? 1 : 0;
+    }
+  } p;
+  RenderQueue q(p, 4, 2, 16);
+  q.start(0, 30);
+  int emitted = 0;
+  for (std::int64_t k = 0; k < 30; ++k) {
+    const PingSlot* s = wait_ready(q, k);
+    REQUIRE(s);
+    CHECK(s->emitted == (k % 3 != 0));
+    emitted += s->emitted ? 1 : 0;
+    q.release(k);
+  }
+  q.stop();
+  CHECK(emitted == 20);
+  CHECK(q.produced() == 20);
+  CHECK(q.produce_total_ns() == 20 * 1'000'000);  // the mean stays 1 ms
+  CHECK(q.produce_max_ns() == 1'000'000);
+}

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <stdexcept>
 
+#include "atr/chip_register.h"
 #include "atr/shadow_height.h"
 
 namespace sonarloop::study {
@@ -141,6 +143,40 @@ ErrorRate error_rate(std::size_t errors, std::size_t n, double z) {
   return r;
 }
 
+Chip registration_chip(ChipView chip, const SweepCondition& c, std::uint64_t index, bool test) {
+  const int side = std::max(1, static_cast<int>(std::lround(c.window_m / c.resolution_m)));
+  ChipPoint centre{0.5 * (chip.height - 1), 0.5 * (chip.width - 1)};
+  if (test && c.misregister_m > 0.0) {
+    // uniform in a disc of radius misregister_m, from the chip's index (splitmix64)
+    std::uint64_t z = index + 0x9E3779B97F4A7C15ull;
+    const auto next = [&z] {
+      z += 0x9E3779B97F4A7C15ull;
+      std::uint64_t x = z;
+      x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+      x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+      return static_cast<double>((x ^ (x >> 31)) >> 11) * 0x1.0p-53;
+    };
+    const double r = c.misregister_m / c.resolution_m * std::sqrt(next());
+    const double a = 2.0 * std::numbers::pi * next();
+    centre.row += r * std::sin(a);
+    centre.col += r * std::cos(a);
+  }
+  if (c.register_centroid) {
+    const int cue = std::max(
+        side,
+        static_cast<int>(std::lround((c.window_m + kRegistrationCueMargin_m) / c.resolution_m)));
+    // the cue window on whole chip pixels (its pixel k is the chip's o + k), so that the
+    // centroid maps back exactly
+    const double half = 0.5 * (cue - 1);
+    const double o_row = static_cast<double>(std::lround(centre.row - half));
+    const double o_col = static_cast<double>(std::lround(centre.col - half));
+    const Chip window = chip_window(chip, cue, cue, {o_row + half, o_col + half});
+    const ChipPoint p = highlight_centroid(window.view());
+    centre = {o_row + p.row, o_col + p.col};
+  }
+  return chip_window(chip, side, side, centre);
+}
+
 Chip classifier_chip(const render::ChipImage& c, bool shadow_height) {
   Chip chip;
   chip.width = c.cols;
@@ -172,8 +208,8 @@ bool is_fusion(const SweepExperiment& e) {
 }
 
 std::vector<std::string> sweep_experiment_names() {
-  return {"fig11",      "fig13", "fig15",    "aspect", "snr",      "altitude", "burial",
-          "train_size", "p",     "open_set", "fusion", "fusion13", "ablation"};
+  return {"fig11",      "fig13", "fig15",    "aspect", "snr",      "altitude",     "burial",
+          "train_size", "p",     "open_set", "fusion", "fusion13", "registration", "ablation"};
 }
 
 SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettings& s) {
@@ -297,6 +333,29 @@ SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettin
         }
       }
     }
+  } else if (name == "registration") {
+    e.title =
+        "Registration: test chips cut off the target's centre, with and without "
+        "re-centring on the highlight";
+    const std::vector<double> res =
+        s.resolutions_cm.empty() ? std::vector<double>{5.0} : s.resolutions_cm;
+    for (double cm : res) {
+      for (const bool reg : {false, true}) {
+        for (const double off : {0.0, 0.1, 0.2, 0.3, 0.5}) {
+          SweepCondition c = base_condition(s, cm);
+          c.x_name = "misregistration_m";
+          c.x = off;
+          c.preprocess = ChipPreprocess{};  // the window is the crop
+          c.window_m = kMinCroppedSide_m;
+          c.misregister_m = off;
+          c.register_centroid = reg;
+          c.series =
+              std::string(reg ? "centroid-registered" : "as cut") + " " + format_number(cm) + " cm";
+          e.conditions.push_back(c);
+        }
+      }
+    }
+    return e;  // its own window
   } else if (name == "ablation") {
     e.title = "Ablation: chip pre-processing before eq. 9 (highlights)";
     e.conditions = ablation_conditions(s);

@@ -36,6 +36,9 @@
 //   fusion      highlight + shadow fusion (atr/fusion.h): the same objects (the four targets at
 //               25 m ground range) identified from their highlight chip, their shadow chip, and
 //               both (5-20 cm).
+//   fusion13    the same with fig13's seven and the mine / non-mine decision.
+//   registration the four targets' highlights in a 1.2 m window cut 0-0.5 m off the target, as
+//               cut and re-centred on the highlight centroid (atr/chip_register.h), at 5 cm.
 //   ablation    the chip pre-processing factors of atr/chip_preprocess.h (crop, multilook,
 //               levels against the seabed), one at a time and combined, at 5 and 15 cm, on
 //               the four targets' highlights; every experiment also scores each test seabed.
@@ -126,9 +129,27 @@ struct SweepCondition {
   // -1 none) and the calibration quantile (TrainOptions::reject_quantile, 0 off)
   int held_out = -1;
   double reject_quantile = 0.0;
+  // registration (the registration experiment; atr/chip_register.h): chips cut as a window of
+  // window_m a side (0: off) around the chip's centre, test chips around a point
+  // misregister_m off it at most (uniform in a disc, drawn from the chip's index), and with
+  // register_centroid re-centred on the highlight centroid found in a cue window
+  // kRegistrationCueMargin_m larger
+  double window_m = 0.0;
+  double misregister_m = 0.0;
+  bool register_centroid = false;
   FusionInput fusion = FusionInput::kNone;  // the fusion experiment's conditions
   atr::FusionNorm fusion_norm = atr::FusionNorm::kModelTypical;
 };
+
+// The registration experiment's cue window is this much larger than the chip window (m): a
+// detector's window that still holds the target when its position is off by half of it.
+inline constexpr double kRegistrationCueMargin_m = 0.8;
+
+// The chip a registration condition classifies (SweepCondition::window_m > 0): a window cut
+// from the rendered chip around its centre (training, test = false) or around a misregistered
+// point (test), optionally re-centred on the highlight centroid. `index` draws the offset.
+atr::Chip registration_chip(atr::ChipView chip, const SweepCondition& c, std::uint64_t index,
+                            bool test);
 
 struct SweepExperiment {
   std::string name;

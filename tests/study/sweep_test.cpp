@@ -378,5 +378,50 @@ TEST_CASE("burial: one render group per burial; training chips always proud", "[
   CHECK(render_group_spec(e, groups[5], s, false).burial_fraction == 0.0);
 }
 
+TEST_CASE("registration: windows cut off the centre, and re-centred on the highlight", "[sweep]") {
+  SweepSettings s = settings();
+  s.resolutions_cm = {5};
+  s.crop_auto = true;  // the window replaces any crop
+  const SweepExperiment e = make_sweep_experiment("registration", s);
+  REQUIRE(e.conditions.size() == 10);  // 5 offsets, as cut and registered
+  for (const SweepCondition& c : e.conditions) {
+    CHECK(c.window_m == 1.2);
+    CHECK(c.preprocess.is_identity());
+  }
+  CHECK(e.conditions[0].misregister_m == 0.0);
+  CHECK(e.conditions[4].misregister_m == 0.5);
+  CHECK_FALSE(e.conditions[4].register_centroid);
+  CHECK(e.conditions[9].register_centroid);
+
+  // a 3 m chip at 5 cm (60 x 60) of seabed with a bright 5 x 5 target at its centre
+  Chip chip;
+  chip.width = chip.height = 60;
+  chip.pixels.assign(3600, 100.0f);
+  for (int r = 27; r < 32; ++r)
+    for (int k = 27; k < 32; ++k)
+      chip.pixels[static_cast<std::size_t>(r) * 60 + k] = 200.0f;
+  const SweepCondition& as_cut = e.conditions[3];  // 0.3 m off, as cut
+  const SweepCondition& registered = e.conditions[8];
+  const Chip centred = registration_chip(chip.view(), as_cut, 7, false);  // training: centred
+  REQUIRE(centred.width == 24);
+  REQUIRE(centred.height == 24);
+  // test chips: cut off the centre (a different place per index), the same for one index
+  // registered training chips are centred on the highlight centroid (here the target's
+  // centre, (29, 29), half a pixel from the chip's)
+  const Chip on_target = registration_chip(chip.view(), registered, 7, false);
+  CHECK(on_target.pixels[12 * 24 + 12] == 200.0f);
+  CHECK(on_target.pixels[(12 - 2) * 24 + (12 - 2)] == 200.0f);
+  int moved = 0;
+  for (std::uint64_t i = 0; i < 20; ++i) {
+    const Chip t = registration_chip(chip.view(), as_cut, i, true);
+    moved += t.pixels != centred.pixels ? 1 : 0;
+    CHECK(t.pixels == registration_chip(chip.view(), as_cut, i, true).pixels);
+    // registered: back on the target, whatever the offset
+    CHECK(registration_chip(chip.view(), registered, i, true).pixels == on_target.pixels);
+  }
+  CHECK(moved >= 15);
+  CHECK(registration_chip(chip.view(), e.conditions[0], 3, true).pixels == centred.pixels);
+}
+
 }  // namespace
 }  // namespace sonarloop::study

@@ -188,10 +188,10 @@ Chip read_image_chip(const fs::path& path, const std::string& source,
     const std::span<const std::uint8_t> got(head, static_cast<std::size_t>(in.gcount()));
     Chip c;
     if (image::looks_like_jpeg(got)) {
-      c = chip_from_gray8(image::read_jpeg_gray8(path.string()));
+      c = chip_from_gray8(image::read_jpeg_gray8(path.string(), kMaxChipPixels));
     } else if (got.size() == 8 && got[0] == 0x89 && got[1] == 'P' && got[2] == 'N' &&
                got[3] == 'G') {
-      c = chip_from_gray8(image::read_png_gray8(path.string()));
+      c = chip_from_gray8(image::read_png_gray8(path.string(), kMaxChipPixels));
     } else {
       throw std::runtime_error("'" + path.string() +
                                "' is not a PNG or JPEG image (by its first bytes)");

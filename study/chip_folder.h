@@ -42,6 +42,10 @@
 
 namespace sonarloop::study {
 
+// The largest chip image read, width x height: 4096 x 4096 pixels (a 3 m chip at 1 mm). A file
+// declaring more is refused from its header, before it is decoded (drivers/image/png.h).
+inline constexpr std::size_t kMaxChipPixels = std::size_t{4096} * 4096;
+
 // A chip size in pixels.
 struct ChipSize {
   int width = 0;

@@ -40,9 +40,11 @@ jpeg_error_mgr* use_error_manager(ErrorManager& err) {
   return &err.pub;
 }
 
-// Decodes `data` into out (sized here). Returns false with err.message set on failure.
-// Plain C style on purpose: only trivially destructible locals live across setjmp.
-bool decode(const std::uint8_t* data, std::size_t size, ErrorManager& err,
+// Decodes `data` into out (sized here). Returns false with err.message set on failure; an image
+// of more than max_pixels pixels sets only width and height (from its header) and returns false
+// with an empty message. Plain C style on purpose: only trivially destructible locals live
+// across setjmp.
+bool decode(const std::uint8_t* data, std::size_t size, std::size_t max_pixels, ErrorManager& err,
             std::vector<std::uint8_t>& out, int& width, int& height) {
   jpeg_decompress_struct cinfo{};
   cinfo.err = use_error_manager(err);
@@ -53,6 +55,12 @@ bool decode(const std::uint8_t* data, std::size_t size, ErrorManager& err,
   jpeg_create_decompress(&cinfo);
   jpeg_mem_src(&cinfo, data, static_cast<unsigned long>(size));
   jpeg_read_header(&cinfo, TRUE);
+  if (static_cast<std::size_t>(cinfo.image_width) * cinfo.image_height > max_pixels) {
+    width = static_cast<int>(cinfo.image_width);
+    height = static_cast<int>(cinfo.image_height);
+    jpeg_destroy_decompress(&cinfo);
+    return false;
+  }
   // colour images: the library keeps the luminance channel (YCbCr -> Y)
   cinfo.out_color_space = JCS_GRAYSCALE;
   jpeg_start_decompress(&cinfo);
@@ -102,7 +110,7 @@ bool looks_like_jpeg(std::span<const std::uint8_t> head) {
   return head.size() >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF;
 }
 
-Gray8 read_jpeg_gray8(const std::string& path) {
+Gray8 read_jpeg_gray8(const std::string& path, std::size_t max_pixels) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open '" + path + "' (rb)");
   const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
@@ -111,7 +119,12 @@ Gray8 read_jpeg_gray8(const std::string& path) {
   if (!looks_like_jpeg(bytes)) throw std::runtime_error("'" + path + "' is not a JPEG file");
   Gray8 img;
   ErrorManager err{};
-  if (!decode(bytes.data(), bytes.size(), err, img.pixels, img.width, img.height)) {
+  if (!decode(bytes.data(), bytes.size(), max_pixels, err, img.pixels, img.width, img.height)) {
+    if (err.message[0] == '\0') {
+      throw std::runtime_error(too_many_pixels_message(path, static_cast<std::size_t>(img.width),
+                                                       static_cast<std::size_t>(img.height),
+                                                       max_pixels));
+    }
     throw std::runtime_error("JPEG error in '" + path + "': " + err.message);
   }
   return img;

@@ -15,8 +15,9 @@ namespace sonarloop::image {
 // Whether bytes start with the JPEG start-of-image marker (FF D8 FF).
 bool looks_like_jpeg(std::span<const std::uint8_t> head);
 
-// Reads a JPEG file as 8-bit grey.
-Gray8 read_jpeg_gray8(const std::string& path);
+// Reads a JPEG file as 8-bit grey. An image of more than max_pixels pixels is refused from its
+// header (std::runtime_error naming its size), before anything is decoded.
+Gray8 read_jpeg_gray8(const std::string& path, std::size_t max_pixels = kMaxImagePixels);
 
 // Writes 8-bit pixels, `components` per pixel (1 grey, 3 RGB), at a quality of 1 to 100.
 // Lossy: pixels read back differ by a few levels (exactly equal only for flat areas).

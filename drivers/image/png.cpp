@@ -87,7 +87,14 @@ void write_png_rgb8(const std::string& path, int width, int height,
              static_cast<std::size_t>(width) * 3, false);
 }
 
-Gray8 read_png_gray8(const std::string& path) {
+std::string too_many_pixels_message(const std::string& path, std::size_t width, std::size_t height,
+                                    std::size_t max_pixels) {
+  return "'" + path + "' declares " + std::to_string(width) + " x " + std::to_string(height) +
+         " pixels, more than the " + std::to_string(max_pixels) +
+         " this reader accepts (a corrupt header, or not an image for this purpose)";
+}
+
+Gray8 read_png_gray8(const std::string& path, std::size_t max_pixels) {
   FilePtr f = open_or_throw(path, "rb");
   unsigned char sig[8] = {};
   if (std::fread(sig, 1, 8, f.get()) != 8 || png_sig_cmp(sig, 0, 8) != 0) {
@@ -105,6 +112,12 @@ Gray8 read_png_gray8(const std::string& path) {
   png_init_io(png, f.get());
   png_set_sig_bytes(png, 8);
   png_read_info(png, info);
+  const std::size_t declared_width = png_get_image_width(png, info);
+  const std::size_t declared_height = png_get_image_height(png, info);
+  if (declared_width * declared_height > max_pixels) {
+    throw std::runtime_error(
+        too_many_pixels_message(path, declared_width, declared_height, max_pixels));
+  }
   // normalise every colour type and depth to 8-bit grey without alpha
   const png_byte color = png_get_color_type(png, info);
   if (png_get_bit_depth(png, info) == 16) png_set_strip_16(png);

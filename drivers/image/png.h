@@ -25,8 +25,19 @@ void write_png_gray16(const std::string& path, int width, int height,
 void write_png_rgb8(const std::string& path, int width, int height,
                     std::span<const std::uint8_t> rgb);
 
+// The largest image the readers decode by default, width x height: 2^26 pixels (64 MiB of grey).
+// A header declaring more is refused before any pixel is decoded, so that a corrupt or hostile
+// file cannot make a reader allocate gigabytes (fuzzing found a 125-byte JPEG declaring
+// 65298 x 2301 pixels: 150 Mpixels, 0.6 GB once converted to a float chip).
+inline constexpr std::size_t kMaxImagePixels = std::size_t{1} << 26;
+
 // Reads any PNG (grey, grey+alpha, RGB, RGBA, palette, 1-16 bit) as 8-bit grey.
 // Colour is converted with the ITU-R BT.601 luma weights, 16-bit samples keep their top byte.
-Gray8 read_png_gray8(const std::string& path);
+// An image of more than max_pixels pixels is refused (std::runtime_error naming its size).
+Gray8 read_png_gray8(const std::string& path, std::size_t max_pixels = kMaxImagePixels);
+
+// The error message of an image over the limit (both readers).
+std::string too_many_pixels_message(const std::string& path, std::size_t width, std::size_t height,
+                                    std::size_t max_pixels);
 
 }  // namespace sonarloop::image

@@ -228,3 +228,20 @@ TEST_CASE("chip folder: skip_bad lists a corrupt file, a wrong-size chip and a n
   o.size = ChipSize{8, 8};
   CHECK(read_chip_folder(root.string(), o).chips.size() == 4);
 }
+
+TEST_CASE("chip folder: a chip image over 4096 x 4096 pixels is refused before decoding") {
+  // the fuzzers' finding (tests/fuzz/corpus/png_chip/huge_header.jpg): a 125-byte JPEG whose
+  // header declares 65298 x 2301 pixels took seconds and 1 GB to turn into a chip
+  const std::string found =
+      std::string(SONARLOOP_SOURCE_DIR) + "/tests/fuzz/corpus/png_chip/huge_header.jpg";
+  CHECK_THROWS_WITH(read_chip_file(found), Catch::Contains("huge_header.jpg") &&
+                                               Catch::Contains("declares 65298 x 2301 pixels"));
+  // the limit is on pixels, not on a side: 4097 x 64 is read, 4097 x 4096 is not
+  testing::TempDir dir("atr-chip-folder-limit");
+  image::write_png_gray8(dir.file("wide.png"), 4097, 64, std::vector<std::uint8_t>(4097 * 64, 9));
+  CHECK(read_chip_file(dir.file("wide.png")).chip.width == 4097);
+  image::write_png_gray8(dir.file("big.png"), 4097, 4096,
+                         std::vector<std::uint8_t>(std::size_t{4097} * 4096, 9));
+  CHECK_THROWS_WITH(read_chip_file(dir.file("big.png")),
+                    Catch::Contains("declares 4097 x 4096 pixels"));
+}

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <fstream>
+#include <string>
 #include <vector>
 
 #include "tests/support/temp_dir.h"
@@ -83,4 +84,18 @@ TEST_CASE("jpeg: errors name the file") {
   CHECK_FALSE(looks_like_jpeg(std::vector<std::uint8_t>{0x89, 'P', 'N', 'G'}));
   CHECK_THROWS(write_jpeg(dir.file("bad.jpg"), 2, 2, 1, std::vector<std::uint8_t>(3)));
   CHECK_THROWS(write_jpeg(dir.file("bad.jpg"), 2, 2, 2, std::vector<std::uint8_t>(8)));
+}
+
+TEST_CASE("jpeg: an image over the pixel limit is refused from its header") {
+  sonarloop::testing::TempDir dir("jpeglimit");
+  const std::vector<std::uint8_t> px = gradient(40, 24);
+  write_jpeg(dir.file("a.jpg"), 40, 24, 1, px);
+  CHECK(read_jpeg_gray8(dir.file("a.jpg"), 40 * 24).width == 40);  // at the limit: read
+  CHECK_THROWS_WITH(read_jpeg_gray8(dir.file("a.jpg"), 40 * 24 - 1),
+                    Catch::Contains("a.jpg") && Catch::Contains("declares 40 x 24 pixels") &&
+                        Catch::Contains("more than the 959"));
+  // the fuzzers' finding: 125 bytes declaring 65298 x 2301 pixels, refused by default
+  const std::string found =
+      std::string(SONARLOOP_SOURCE_DIR) + "/tests/fuzz/corpus/png_chip/huge_header.jpg";
+  CHECK_THROWS_WITH(read_jpeg_gray8(found), Catch::Contains("declares 65298 x 2301 pixels"));
 }

@@ -1,7 +1,10 @@
 #include "drivers/image/png.h"
 
 #include <catch2/catch.hpp>
+#include <cstdint>
 #include <fstream>
+#include <iterator>
+#include <string>
 #include <vector>
 
 #include "tests/support/temp_dir.h"
@@ -49,4 +52,48 @@ TEST_CASE("png: errors name the file") {
   CHECK_THROWS_WITH(read_png_gray8(dir.file("junk.png")), Catch::Contains("not a PNG"));
   std::vector<std::uint8_t> px(3);
   CHECK_THROWS(write_png_gray8(dir.file("bad.png"), 2, 2, px));
+}
+
+namespace {
+
+// CRC-32 of PNG chunks (ISO 3309, polynomial 0xEDB88320), bit by bit.
+std::uint32_t crc32(const std::uint8_t* p, std::size_t n) {
+  std::uint32_t c = 0xFFFFFFFFu;
+  for (std::size_t i = 0; i < n; ++i) {
+    c ^= p[i];
+    for (int k = 0; k < 8; ++k)
+      c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+  }
+  return c ^ 0xFFFFFFFFu;
+}
+
+void put_be32(std::vector<std::uint8_t>& b, std::size_t at, std::uint32_t v) {
+  for (int k = 0; k < 4; ++k)
+    b[at + static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(v >> (24 - 8 * k));
+}
+
+}  // namespace
+
+TEST_CASE("png: an image over the pixel limit is refused from its header") {
+  sonarloop::testing::TempDir dir("pnglimit");
+  const std::vector<std::uint8_t> px(8 * 8, 7);
+  write_png_gray8(dir.file("a.png"), 8, 8, px);
+  CHECK(read_png_gray8(dir.file("a.png"), 64).pixels == px);  // at the limit: read
+  CHECK_THROWS_WITH(read_png_gray8(dir.file("a.png"), 63),
+                    Catch::Contains("a.png") && Catch::Contains("declares 8 x 8 pixels"));
+  // a few hundred bytes whose header declares 20000 x 20000 pixels (400 MB of grey): refused by
+  // default before anything is allocated for the pixels
+  std::ifstream in(dir.file("a.png"), std::ios::binary);
+  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                                  std::istreambuf_iterator<char>());
+  REQUIRE(bytes.size() > 33);
+  REQUIRE(std::string(bytes.begin() + 12, bytes.begin() + 16) == "IHDR");
+  put_be32(bytes, 16, 20000);                             // width
+  put_be32(bytes, 20, 20000);                             // height
+  put_be32(bytes, 29, crc32(bytes.data() + 12, 4 + 13));  // the chunk's type and data
+  std::ofstream(dir.file("bomb.png"), std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()),
+             static_cast<std::streamsize>(bytes.size()));
+  CHECK_THROWS_WITH(read_png_gray8(dir.file("bomb.png")),
+                    Catch::Contains("declares 20000 x 20000 pixels"));
 }

@@ -23,7 +23,9 @@ void Emulator::Impl::message(std::string_view text) const {
 RunStats Emulator::Impl::run() {
   try {
     prepare_first_ping();
+    if (options.realtime_priority != 0) lock_process_memory(realtime);
     start_clock();
+    raise_priority();
     loop();
   } catch (...) {
     shutdown();
@@ -45,6 +47,17 @@ void Emulator::Impl::prepare_first_ping() {
       msg, sizeof msg, "%s renderer: scene for the first ping and %.0f m ahead made in %.3f s",
       render::renderer_name(options.renderer), kPrepareAhead_m, seconds(clock.now_ns() - t0));
   message(msg);
+}
+
+// --realtime-priority (realtime_priority.h): memory locked before t = 0 (locking faults in every
+// page), SCHED_FIFO for this thread, the publisher, once the render workers run (threads inherit
+// their creator's policy: they stay at normal priority).
+void Emulator::Impl::raise_priority() {
+  if (options.realtime_priority == 0) return;
+  apply_fifo_priority(options.realtime_priority, realtime);
+  for (const std::string& line : realtime.messages)
+    message(line);
+  stats.realtime = realtime.summary();
 }
 
 // t = 0: the epoch and the pacer's wall start, read together; then the render workers start.

@@ -22,6 +22,7 @@
 #include "emulator/nav_frames.h"
 #include "emulator/ping_producer.h"
 #include "emulator/pose_source.h"
+#include "emulator/realtime_priority.h"
 #include "emulator/recording.h"
 #include "emulator/render_queue.h"
 #include "sim/scene/scene.h"
@@ -89,6 +90,7 @@ struct Emulator::Impl {
   bool header_sent = false;
   bool pings_stale = false;  // inside a stale episode (pings)
   SimTime sim_reached = 0;
+  RealtimeOutcome realtime;  // --realtime-priority's outcome
 
   void message(std::string_view text) const;
   bool stop_requested() const { return hooks.stop_requested && hooks.stop_requested(); }
@@ -136,6 +138,7 @@ struct Emulator::Impl {
   RunStats run();
   void prepare_first_ping();
   void start_clock();
+  void raise_priority();
   void shutdown();
 };
 

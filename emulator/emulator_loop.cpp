@@ -219,7 +219,7 @@ void Emulator::Impl::publish_ping(const PingSlot& slot, std::int64_t k) {
     const std::int64_t lateness = sent - pacer.wall_of(slot.truth.t + send_delay);
     stats.ping_lateness.add(lateness);
     stats.ping_latency.add(sent - pacer.wall_of(slot.truth.t));
-    if (lateness > kDeadlineToleranceNs) ++stats.pings_late;
+    if (lateness > stats.deadline_tolerance_ns) ++stats.pings_late;
   }
   if (recording) {
     recording->write_ping(slot);

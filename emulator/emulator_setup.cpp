@@ -89,6 +89,13 @@ void Emulator::Impl::validate_options() const {
         "wall time to follow an external pose in");
   }
   if (options.ring_slots < 1) throw std::invalid_argument("ring_slots must be at least 1");
+  if (!(options.deadline_tolerance_s > 0.0 && options.deadline_tolerance_s <= 10.0)) {
+    throw std::invalid_argument("--lateness-tolerance-ms must be > 0 and at most 10000");
+  }
+  if (options.realtime_priority != 0 && (options.realtime_priority < kMinRealtimePriority ||
+                                         options.realtime_priority > kMaxRealtimePriority)) {
+    throw std::invalid_argument("--realtime-priority must be 1..99");
+  }
 }
 
 // A ping must fit one UDP datagram (with --udp): throws std::invalid_argument naming the sonar, the

@@ -10,6 +10,7 @@ void Emulator::Impl::init_stats() {
   stats.rate = to_string(options.rate);
   stats.threads = options.threads;
   stats.ring_slots = options.ring_slots;
+  stats.deadline_tolerance_ns = from_seconds(options.deadline_tolerance_s);
   stats.ping_period_s = seconds(period);
   stats.send_delay_s = seconds(send_delay);
   stats.bins_per_side = setup.bins;

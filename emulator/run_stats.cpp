@@ -136,6 +136,7 @@ std::string stats_json(const RunStats& s) {
   };
   w.begin_object();
   w.field("rate", s.rate).field("threads", s.threads).field("ring_slots", s.ring_slots);
+  w.field("realtime", s.realtime);
   w.field("ping_period_s", s.ping_period_s, 9).field("send_delay_s", s.send_delay_s, 9);
   w.field("bins_per_side", s.bins_per_side).field("bin_size_m", s.bin_size_m, 6);
   w.field("max_range_m", s.max_range_m, 6).field("packet_bytes", s.packet_bytes);
@@ -149,7 +150,7 @@ std::string stats_json(const RunStats& s) {
   w.field("stale_episodes", s.stale_episodes);
   w.field("extrapolated", s.pings_extrapolated);
   w.field("deadline_misses", s.deadline_misses());
-  w.field("deadline_tolerance_ms", ms(static_cast<double>(kDeadlineToleranceNs)), 6);
+  w.field("deadline_tolerance_ms", ms(static_cast<double>(s.deadline_tolerance_ns)), 6);
   w.field("rendered", s.pings_rendered);
   w.field("pings_per_wall_s",
           s.wall_time_s > 0 ? static_cast<double>(s.pings_sent) / s.wall_time_s : 0.0, 6);

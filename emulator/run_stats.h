@@ -44,10 +44,11 @@ class LatencyHistogram {
   double sum_ns_ = 0.0;
 };
 
-// A ping is a deadline miss when it is sent more than this after its send time, or not sent at
-// all (dropped). 1 ms is 1.5 % of the 67 ms ping period of a 50 m sidescan and far above the
-// scheduler's usual wake-up latency (tens of us).
-inline constexpr std::int64_t kDeadlineToleranceNs = 1'000'000;
+// A ping is a deadline miss when it is sent more than the run's tolerance after its send time
+// (`run --lateness-tolerance-ms`), or not sent at all (dropped). The default, 1 ms, is 1.5 % of
+// the 67 ms ping period of a 50 m sidescan and far above the scheduler's usual wake-up latency
+// (tens of us).
+inline constexpr std::int64_t kDefaultDeadlineToleranceNs = 1'000'000;
 
 // Counters of one run. Written by the publisher thread, except the render counters, which the
 // emulator copies in from the render queue and view cache when it prints.
@@ -58,6 +59,8 @@ struct RunStats {
   int ring_slots = 0;
   double ping_period_s = 0.0;
   double send_delay_s = 0.0;  // ping time -> send time (the receive window)
+  std::int64_t deadline_tolerance_ns = kDefaultDeadlineToleranceNs;  // late beyond this: a miss
+  std::string realtime = "normal";  // the publisher's priority (realtime_priority.h summary())
   int bins_per_side = 0;
   double bin_size_m = 0.0;
   double max_range_m = 0.0;
@@ -72,7 +75,7 @@ struct RunStats {
   // pings
   std::uint64_t pings_due = 0;      // pings whose window has come (sent + dropped + stale)
   std::uint64_t pings_sent = 0;     // published (UDP when given, recording, ...)
-  std::uint64_t pings_late = 0;     // sent more than kDeadlineToleranceNs late
+  std::uint64_t pings_late = 0;     // sent more than deadline_tolerance_ns late
   std::uint64_t pings_dropped = 0;  // not rendered before the next ping's send time
   std::uint64_t pings_stale = 0;    // not emitted: the external pose was stale (--pose-from)
   std::uint64_t stale_episodes = 0;

@@ -12,6 +12,7 @@
 #include "drivers/xtf/xtf_codec.h"
 #include "emulator/emulator.h"
 #include "emulator/pacer.h"
+#include "emulator/realtime_priority.h"
 #include "emulator/run_stats.h"
 #include "tools/args.h"
 #include "tools/cli_helpers.h"
@@ -70,6 +71,12 @@ emulator::EmulatorOptions emulator_options(const Args& args) {
   if (const auto e = args.get_double("--epoch", 0.0, 253402300799.0)) {
     o.epoch_utc_ns = static_cast<std::int64_t>(std::llround(*e * 1e9));
   }
+  o.deadline_tolerance_s =
+      args.get_double("--lateness-tolerance-ms", 1e-3, 1e4).value_or(1.0) * 1e-3;
+  o.realtime_priority =
+      static_cast<int>(args.get_int("--realtime-priority", emulator::kMinRealtimePriority,
+                                    emulator::kMaxRealtimePriority)
+                           .value_or(0));
   return o;
 }
 
@@ -135,7 +142,9 @@ int run_run(const std::vector<std::string>& argv) {
                          {"--classify"},
                          {"--contacts"},
                          {"--renderer"},
-                         {"--web"}});
+                         {"--web"},
+                         {"--lateness-tolerance-ms"},
+                         {"--realtime-priority"}});
   if (args.positionals().size() > 1) throw UsageError("expected at most one SCENARIO.yaml");
   const bool quiet = args.has("--quiet");
 
@@ -276,6 +285,14 @@ options:
   --renderer R           profile (default: the heightfield profile renderer) or raytrace (the
                          Embree reference; it builds views of the seabed as the vehicle goes,
                          so a real-time run may drop pings while it does: docs/rendering.md)
+  --realtime-priority N  run the publisher (the thread that sends each ping and frame at its
+                         deadline) at SCHED_FIFO priority N (1..99) and lock the memory,
+                         where permitted (root, CAP_SYS_NICE, `ulimit -r`/`-l`); where not,
+                         a message says why and the run goes on at normal priority. The
+                         render threads keep normal priority. For shared machines
+  --lateness-tolerance-ms MS
+                         a ping sent more than MS after its send time counts as a
+                         deadline miss (default 1; 0.001..10000)
   --web HOST:PORT        serve the live operator view there (docs/web.md): waterfall, track
                          and contacts (with --classify), statistics, pause; PORT alone binds
                          127.0.0.1, port 0 a free port (the URL is printed). Read-only; a
@@ -287,6 +304,7 @@ examples:
   sonarloop run config/default.yaml --rate max --record out/max --stats-json out/max.json
   sonarloop run --can vcan0 --can log:nav.log --rate 2
   sonarloop run --pose-from udp:127.0.0.1:5700 --udp 127.0.0.1:5600 --stale-after 1
+  sonarloop run --udp 127.0.0.1:5600 --realtime-priority 50 --lateness-tolerance-ms 2
   sonarloop run --rate max --classify out/atr.slpca --contacts out/contacts.jsonl
   sonarloop run --udp 127.0.0.1:5600 --web 8080     (then open http://127.0.0.1:8080/)
   sonarloop run --classify out/atr.slpca --web 127.0.0.1:0

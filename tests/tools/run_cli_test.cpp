@@ -463,6 +463,11 @@ TEST_CASE("run cli: bad input gets a clear error") {
     CHECK(run("run " + s + " --pose-from udp:127.0.0.1:5700 --rate max") == 2);
     CHECK(run("run " + s + " --bogus") == 2);
     CHECK(run("run " + s + " " + s) == 2);
+    CHECK(run("run " + s + " --realtime-priority 0", dir.file("err")) == 2);
+    CHECK(slurp(dir.file("err")).find("--realtime-priority") != std::string::npos);
+    CHECK(run("run " + s + " --realtime-priority 100") == 2);
+    CHECK(run("run " + s + " --lateness-tolerance-ms 0") == 2);
+    CHECK(run("run " + s + " --lateness-tolerance-ms nan") == 2);
     CHECK(run("run " + s + " --can nonsense:spec", dir.file("err")) == 1);
     CHECK(slurp(dir.file("err")).find("nonsense:spec") != std::string::npos);
   }

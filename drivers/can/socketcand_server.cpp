@@ -87,6 +87,28 @@ struct SocketcandServer::Client {
   SocketcandStreamParser parser;
   ByteRing backlog;
   bool dead = false;
+  // Frame accounting, for frames_dropped_slow: frames handed to this client by send(), frames
+  // whose first byte reached the kernel (every frame's text starts with its '\n', and only a
+  // frame's text holds one), and whether the bytes given to the kernel so far end inside a frame
+  // (a '\n' not yet followed by the frame's closing '>').
+  std::uint64_t frames_handed = 0;
+  std::uint64_t frames_begun = 0;
+  bool mid_frame = false;
+  // Accounts for bytes [p, p + n) given to the kernel.
+  void note_written(const char* p, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (p[i] == '\n') {
+        ++frames_begun;
+        mid_frame = true;
+      } else if (p[i] == '>') {
+        mid_frame = false;
+      }
+    }
+  }
+  // Frames handed to this client that it will never receive whole.
+  std::uint64_t frames_undelivered() const {
+    return frames_handed - frames_begun + (mid_frame ? 1 : 0);
+  }
 };
 
 SocketcandServer::SocketcandServer(const net::HostPort& listen_address,
@@ -178,9 +200,16 @@ void SocketcandServer::emit(const std::vector<std::string>& warnings) const {
   }
 }
 
-std::string SocketcandServer::slow_reason() const {
+std::string SocketcandServer::slow_reason(std::uint64_t frames_lost) const {
   return "too slow (backlog full, limit " + std::to_string(options_.client_backlog_bytes) +
-         " bytes)";
+         " bytes; " + std::to_string(frames_lost) + " frames it did not receive)";
+}
+
+void SocketcandServer::drop_slow_client(Client& c, std::vector<std::string>* warnings) {
+  const std::uint64_t lost = c.frames_undelivered();
+  ++stats_.clients_dropped_slow;
+  stats_.frames_dropped_slow += lost;
+  drop_client(c, slow_reason(lost), warnings);
 }
 
 void SocketcandServer::drop_client(Client& c, std::string_view why,
@@ -205,6 +234,7 @@ void SocketcandServer::flush_backlog(Client& c) {
       }
       return;
     }
+    c.note_written(p, static_cast<std::size_t>(sent));
     c.backlog.pop(static_cast<std::size_t>(sent));
     if (static_cast<std::size_t>(sent) < n) return;  // kernel buffer full
   }
@@ -219,6 +249,7 @@ void SocketcandServer::reply(Client& c, const char* text, std::size_t size,
       const ssize_t sent = ::send(c.fd.get(), text, size, MSG_DONTWAIT | MSG_NOSIGNAL);
       if (sent >= 0) {
         done = static_cast<std::size_t>(sent);
+        c.note_written(text, done);
         break;
       }
       if (errno == EINTR) continue;
@@ -231,10 +262,7 @@ void SocketcandServer::reply(Client& c, const char* text, std::size_t size,
     }
   }
   if (done == size) return;
-  if (!c.backlog.push(text + done, size - done)) {
-    ++stats_.clients_dropped_slow;
-    drop_client(c, slow_reason(), warnings);
-  }
+  if (!c.backlog.push(text + done, size - done)) drop_slow_client(c, warnings);
 }
 
 void SocketcandServer::send(const CanFrame& frame, std::int64_t t_ns) {
@@ -250,11 +278,11 @@ void SocketcandServer::send(const CanFrame& frame, std::int64_t t_ns) {
       if (c.dead) continue;
       if (c.state == Client::State::kRaw || c.state == Client::State::kRawPending) {
         const bool was_empty = c.backlog.empty();
+        ++c.frames_handed;
         if (c.state == Client::State::kRaw) {
           reply(c, msg, n, &warnings);
         } else if (!c.backlog.push(msg, n)) {  // start delay: queue until it is over
-          ++stats_.clients_dropped_slow;
-          drop_client(c, slow_reason(), &warnings);
+          drop_slow_client(c, &warnings);
         }
         // the I/O thread must watch for POLLOUT (new backlog) or close a dropped client
         if (c.dead || (was_empty && !c.backlog.empty())) need_wake = true;

@@ -64,9 +64,12 @@ struct SocketcandServerStats {
   std::uint64_t clients_rejected = 0;           // over max_clients, all of them past "< open >"
   std::uint64_t clients_dropped_handshake = 0;  // no "< open >" in time, or evicted for a newer
   std::uint64_t clients_dropped_slow = 0;       // backlog overflow
-  std::uint64_t clients_disconnected = 0;       // closed by the peer or a socket error
-  std::uint64_t protocol_errors = 0;            // malformed or unsupported commands
-  std::uint64_t receive_queue_overflows = 0;    // frames dropped because receive() lagged
+  // frames that clients dropped as slow never received whole: handed to the client and never
+  // begun on its socket (its backlog, the frame that overflowed it), or begun and cut off
+  std::uint64_t frames_dropped_slow = 0;
+  std::uint64_t clients_disconnected = 0;     // closed by the peer or a socket error
+  std::uint64_t protocol_errors = 0;          // malformed or unsupported commands
+  std::uint64_t receive_queue_overflows = 0;  // frames dropped because receive() lagged
 };
 
 class SocketcandServer final : public CanTransport {
@@ -110,7 +113,9 @@ class SocketcandServer final : public CanTransport {
   void flush_backlog(Client& c);
   void drop_client(Client& c, std::string_view why, std::vector<std::string>* warnings);
   void emit(const std::vector<std::string>& warnings) const;
-  std::string slow_reason() const;
+  std::string slow_reason(std::uint64_t frames_lost) const;
+  // Drops a client whose backlog overflowed: counted, with the frames it never received.
+  void drop_slow_client(Client& c, std::vector<std::string>* warnings);
 
   SocketcandServerOptions options_;
   net::HostPort bound_;

@@ -86,6 +86,20 @@ class RawClient {
     const ssize_t n = ::recv(fd_, buf, sizeof buf, 0);
     return n > 0 ? std::string(buf, static_cast<std::size_t>(n)) : std::string();
   }
+  // Everything the server sent, up to its close (at most 30 s).
+  std::string read_to_eof() {
+    std::string all;
+    char buf[65536];
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (std::chrono::steady_clock::now() < until) {
+      pollfd p{fd_, POLLIN, 0};
+      if (::poll(&p, 1, 100) <= 0) continue;
+      const ssize_t n = ::recv(fd_, buf, sizeof buf, 0);
+      if (n <= 0) break;
+      all.append(buf, static_cast<std::size_t>(n));
+    }
+    return all;
+  }
   // True when the server closes the connection within `ms` (anything it sends first is skipped).
   bool closed_within(int ms) {
     const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
@@ -268,11 +282,27 @@ TEST_CASE("socketcand server: a client that stops reading is dropped, send() nev
   std::printf("slow client dropped after %ld frames\n", sent);
   CHECK(server.stats().clients_dropped_slow == 1);
   REQUIRE(wait_until([&] { return server.connected_clients() == 0; }));
+  // every frame is either received whole by the client (what the kernel had taken before the
+  // drop still arrives, then the close) or counted as dropped: a frame cut off counts as dropped
+  const std::string stream = slow.read_to_eof();
+  long whole = 0;
+  for (std::size_t at = stream.find("\n< frame "); at != std::string::npos;
+       at = stream.find("\n< frame ", at + 1)) {
+    const std::size_t end = stream.find('>', at);
+    if (end != std::string::npos && stream.find('\n', at + 1) > end) ++whole;
+  }
+  std::printf("received whole %ld, dropped %llu\n", whole,
+              static_cast<unsigned long long>(server.stats().frames_dropped_slow));
+  CHECK(whole > 0);
+  CHECK(server.stats().frames_dropped_slow > 0);
+  CHECK(whole + static_cast<long>(server.stats().frames_dropped_slow) == sent);
   {
     std::lock_guard lock(warnings_mu);
     REQUIRE(warnings.size() == 1);
-    CHECK_THAT(warnings[0],
-               Catch::Contains("dropped client 127.0.0.1:") && Catch::Contains("too slow"));
+    CHECK_THAT(warnings[0], Catch::Contains("dropped client 127.0.0.1:") &&
+                                Catch::Contains("too slow") &&
+                                Catch::Contains(std::to_string(server.stats().frames_dropped_slow) +
+                                                " frames it did not receive"));
   }
   // the server goes on serving new clients
   SocketcandClient fresh(HostPort{"127.0.0.1", server.bound_port()});

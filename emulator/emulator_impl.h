@@ -91,6 +91,9 @@ struct Emulator::Impl {
   bool pings_stale = false;  // inside a stale episode (pings)
   SimTime sim_reached = 0;
   RealtimeOutcome realtime;  // --realtime-priority's outcome
+  // The ping the publisher last found unrendered in its open send window: its lateness is the
+  // render workers' (RunStats::pings_late_render), not the publisher's.
+  std::int64_t unrendered_at_open = -1;
 
   void message(std::string_view text) const;
   bool stop_requested() const { return hooks.stop_requested && hooks.stop_requested(); }

@@ -89,6 +89,7 @@ void Emulator::Impl::turn_paced(NavSchedule& navs, std::int64_t& k, const Turn& 
           return;
         }
         waiting_for_render = true;  // late: sent as soon as it is rendered, until `close`
+        unrendered_at_open = k;
         wake = std::min(wake, close);
         break;
       case PingWindow::kEarly:
@@ -219,7 +220,10 @@ void Emulator::Impl::publish_ping(const PingSlot& slot, std::int64_t k) {
     const std::int64_t lateness = sent - pacer.wall_of(slot.truth.t + send_delay);
     stats.ping_lateness.add(lateness);
     stats.ping_latency.add(sent - pacer.wall_of(slot.truth.t));
-    if (lateness > stats.deadline_tolerance_ns) ++stats.pings_late;
+    if (lateness > stats.deadline_tolerance_ns) {
+      ++stats.pings_late;
+      if (unrendered_at_open == k) ++stats.pings_late_render;
+    }
   }
   if (recording) {
     recording->write_ping(slot);

@@ -146,6 +146,7 @@ std::string stats_json(const RunStats& s) {
   w.field("startup_s", s.startup_s, 6);
   w.key("pings").begin_object();
   w.field("due", s.pings_due).field("sent", s.pings_sent).field("late", s.pings_late);
+  w.field("late_render", s.pings_late_render);
   w.field("dropped", s.pings_dropped).field("stale", s.pings_stale);
   w.field("stale_episodes", s.stale_episodes);
   w.field("extrapolated", s.pings_extrapolated);

@@ -73,9 +73,12 @@ struct RunStats {
   double cpu_time_s = 0.0;
 
   // pings
-  std::uint64_t pings_due = 0;      // pings whose window has come (sent + dropped + stale)
-  std::uint64_t pings_sent = 0;     // published (UDP when given, recording, ...)
-  std::uint64_t pings_late = 0;     // sent more than deadline_tolerance_ns late
+  std::uint64_t pings_due = 0;   // pings whose window has come (sent + dropped + stale)
+  std::uint64_t pings_sent = 0;  // published (UDP when given, recording, ...)
+  std::uint64_t pings_late = 0;  // sent more than deadline_tolerance_ns late
+  // of pings_late: not yet rendered when its send window opened (the render workers were late;
+  // the rest woke the publisher late)
+  std::uint64_t pings_late_render = 0;
   std::uint64_t pings_dropped = 0;  // not rendered before the next ping's send time
   std::uint64_t pings_stale = 0;    // not emitted: the external pose was stale (--pose-from)
   std::uint64_t stale_episodes = 0;

@@ -17,11 +17,14 @@ void print_run_summary(const emulator::RunStats& s, const char* how) {
   std::fprintf(stderr, "sonarloop run: %s after %.2f s of simulation in %.2f s (rate %s)\n", how,
                s.sim_time_s, s.wall_time_s, s.rate.c_str());
   if (s.realtime != "normal") std::fprintf(stderr, "  publisher: %s\n", s.realtime.c_str());
-  std::fprintf(stderr, "  pings: %llu sent, %llu deadline misses (%llu late > %g ms, %llu dropped)",
+  std::fprintf(stderr,
+               "  pings: %llu sent, %llu deadline misses (%llu late > %g ms, %llu of them not "
+               "rendered in time; %llu dropped)",
                static_cast<unsigned long long>(s.pings_sent),
                static_cast<unsigned long long>(s.deadline_misses()),
                static_cast<unsigned long long>(s.pings_late),
                ms(static_cast<double>(s.deadline_tolerance_ns)),
+               static_cast<unsigned long long>(s.pings_late_render),
                static_cast<unsigned long long>(s.pings_dropped));
   if (s.pings_stale || s.stale_episodes) {
     std::fprintf(stderr, ", %llu not emitted (stale pose, %llu episodes)",

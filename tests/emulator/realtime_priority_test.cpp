@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -195,4 +196,29 @@ TEST_CASE("emulator --realtime-priority: the publisher alone runs SCHED_FIFO; th
     CHECK(s.realtime == "normal");
   }
   munlockall();  // a Release build as root locked this process's memory
+}
+
+TEST_CASE("emulator: a publisher held up is late by its own fault, not the renderer's") {
+  // the on_ping hook runs on the publisher: holding it 40 ms at ping 5 (a 26.7 ms ping period)
+  // makes ping 6 late with its render long ready
+  EmulatorOptions o;
+  o.rate = parse_rate("realtime");
+  o.threads = 2;
+  o.duration_s = 0.5;
+  o.stats_interval_s = 0;
+  MonotonicClock clock;
+  int pings = 0;
+  EmulatorHooks hooks;
+  hooks.message = [](std::string_view) {};
+  hooks.on_ping = [&](std::span<const std::uint8_t>) {
+    if (pings++ == 5) std::this_thread::sleep_for(std::chrono::milliseconds(40));
+  };
+  Emulator emu(config::parse_scenario(testing::small_scenario_yaml(), "test.yaml"), o, clock,
+               hooks);
+  const RunStats s = emu.run();
+  INFO(stats_json(s));
+  CHECK(s.pings_late >= 1);
+  CHECK(s.pings_late_render == 0);
+  CHECK(s.ping_lateness.max_ns() > 10'000'000);  // 40 ms held, one 26.7 ms period later
+  CHECK_THAT(stats_json(s), Catch::Contains("\"late_render\": 0"));
 }

@@ -2,8 +2,10 @@
 # Coverage-guided fuzzing of every parser that reads outside data (tests/fuzz/*_fuzz.cpp) with
 # libFuzzer, AddressSanitizer and UndefinedBehaviorSanitizer (clang from Debian).
 #
-# usage: scripts/fuzz.sh [SECONDS] [HARNESS ...]
+# usage: scripts/fuzz.sh [SECONDS | --runs N] [HARNESS ...]
 #   SECONDS   per harness (default 60); CI runs 10
+#   --runs N  instead: N executions per harness (issue 11 asks 1000000 of each; the slowest
+#             harnesses, scenario YAML, whole XTF files and chip images, need 5-16 minutes)
 #   HARNESS   xtf_decode xtf_file candump_line socketcand n2k_decode pose_message model_file
 #             scenario_yaml stream_receiver png_chip (default: all)
 # Builds build-fuzz/ (clang, -DSONARLOOP_FUZZ=ON, only the harnesses and the libraries they
@@ -18,6 +20,12 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
 shift || true
+runs=""
+if [ "$seconds" = "--runs" ]; then
+  runs="${1:?--runs needs a number}"
+  shift
+  seconds=86400  # the runs end it
+fi
 all=(xtf_decode xtf_file candump_line socketcand n2k_decode pose_message model_file scenario_yaml
      stream_receiver png_chip)
 harnesses=("$@")
@@ -44,7 +52,7 @@ fuzz_one() {
   case "$h" in xtf_file | png_chip | scenario_yaml) max_len=1048576 ;; esac
   ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1 \
     UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-    build-fuzz/tests/fuzz/fuzz_"$h" "$corpus" -max_total_time="$seconds" -timeout=1 \
+    build-fuzz/tests/fuzz/fuzz_"$h" "$corpus" -max_total_time="$seconds" ${runs:+-runs="$runs"} -timeout=1 \
     -rss_limit_mb=2048 -max_len="$max_len" -print_final_stats=1 \
     -artifact_prefix="build-fuzz/findings/$h-" > "build-fuzz/$h.log" 2>&1 || rc=$?
   echo "$rc" > "build-fuzz/$h.rc"

@@ -80,7 +80,7 @@ struct EmulatorOptions {
   int ring_slots = 16;                                             // render-ahead depth (pings)
   int udp_send_buffer_bytes = 1 << 20;
   // a ping sent more than this after its send time is a deadline miss (--lateness-tolerance-ms)
-  double deadline_tolerance_s = 1e-3;
+  double deadline_tolerance_s = static_cast<double>(kDefaultDeadlineToleranceNs) * 1e-9;
   // --realtime-priority: SCHED_FIFO at this priority (1..99) for the publisher thread and locked
   // memory, where permitted (realtime_priority.h); 0: normal priority
   int realtime_priority = 0;

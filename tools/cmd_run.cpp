@@ -71,8 +71,9 @@ emulator::EmulatorOptions emulator_options(const Args& args) {
   if (const auto e = args.get_double("--epoch", 0.0, 253402300799.0)) {
     o.epoch_utc_ns = static_cast<std::int64_t>(std::llround(*e * 1e9));
   }
-  o.deadline_tolerance_s =
-      args.get_double("--lateness-tolerance-ms", 1e-3, 1e4).value_or(1.0) * 1e-3;
+  if (const auto ms = args.get_double("--lateness-tolerance-ms", 1e-3, 1e4)) {
+    o.deadline_tolerance_s = *ms * 1e-3;
+  }
   o.realtime_priority =
       static_cast<int>(args.get_int("--realtime-priority", emulator::kMinRealtimePriority,
                                     emulator::kMaxRealtimePriority)

@@ -92,6 +92,18 @@ int fifo_threads() {
   return n;
 }
 
+// A paced run of the small scenario on 2 render threads, quiet, with a 5 ms lateness tolerance
+// (a slow first render on a loaded machine, under the sanitizers, must not count as late).
+EmulatorOptions paced_options(const char* rate, double duration_s) {
+  EmulatorOptions o;
+  o.rate = parse_rate(rate);
+  o.threads = 2;
+  o.duration_s = duration_s;
+  o.stats_interval_s = 0;
+  o.deadline_tolerance_s = 0.005;
+  return o;
+}
+
 std::string joined(const std::vector<std::string>& lines) {
   std::string s;
   for (const auto& l : lines)
@@ -162,13 +174,8 @@ TEST_CASE("realtime priority: memory locked only where it cannot make allocation
 
 TEST_CASE("emulator --realtime-priority: the publisher alone runs SCHED_FIFO; the tolerance") {
   const bool permitted = fifo_permitted(10);
-  EmulatorOptions o;
-  o.rate = parse_rate("4");
-  o.threads = 2;
-  o.duration_s = 1.0;
-  o.stats_interval_s = 0;
+  EmulatorOptions o = paced_options("4", 1.0);
   o.realtime_priority = 10;
-  o.deadline_tolerance_s = 0.005;
   MonotonicClock clock;
   std::vector<std::string> messages;
   int pings = 0, publisher_fifo = 0, fifo_tasks_max = 0;
@@ -200,15 +207,8 @@ TEST_CASE("emulator --realtime-priority: the publisher alone runs SCHED_FIFO; th
 
 TEST_CASE("emulator: a publisher held up is late by its own fault, not the renderer's") {
   // the on_ping hook runs on the publisher: holding it 40 ms at ping 5 (a 26.7 ms ping period)
-  // makes ping 6 about 13 ms late with its render long ready (16 pings are rendered ahead). The
-  // 5 ms tolerance keeps a slow first render on a loaded machine (under the sanitizers) from
-  // counting as late.
-  EmulatorOptions o;
-  o.rate = parse_rate("realtime");
-  o.threads = 2;
-  o.duration_s = 0.5;
-  o.stats_interval_s = 0;
-  o.deadline_tolerance_s = 0.005;
+  // makes ping 6 about 13 ms late with its render long ready (16 pings are rendered ahead)
+  const EmulatorOptions o = paced_options("realtime", 0.5);
   MonotonicClock clock;
   int pings = 0;
   EmulatorHooks hooks;

@@ -10,6 +10,7 @@ dir=${1:-$root/build-tsan}
 "$root/scripts/setup.sh"
 tests=(test_emulator_render_queue test_emulator_ping_producer test_emulator_emulator
        test_emulator_pose_source test_emulator_pacer test_drivers_can_socketcand_server
+       test_drivers_can_socketcand_server_faults
        test_drivers_can_can_transport test_drivers_net_udp test_atr_packet_queue
        test_atr_stream_receiver test_atr_onboard_pipeline test_sim_seabed_tile_cache)
 gen=()

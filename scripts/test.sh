@@ -24,7 +24,8 @@ else
   dir=${1:-$root/build-test}
   shift || true
   "$root/scripts/install_clang.sh"
-  # -O1 -g1: line tables for the reports, at half the compile time of -O2 -g
+  # -O1 -g1: line tables for the reports, at half the compile time of -O2 -g (the libraries, the
+  # code under test, are raised to -O2: cmake/SonarloopTargets.cmake)
   SONARLOOP_BUILD_ALL=1 "$root/scripts/build.sh" "$dir" -DSONARLOOP_SANITIZE=ON \
     -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" "$@"

@@ -52,6 +52,13 @@ std::string train_model(const testing::TempDir& dir) {
   return model;
 }
 
+// The model, made once per run of this file's cases and shared by them (they only read it).
+const std::string& shared_model() {
+  static const testing::TempDir dir("mission_model");
+  static const std::string model = train_model(dir);
+  return model;
+}
+
 JsonLine parse_file(const std::string& path) {
   std::string error;
   const auto j = JsonLine::parse(slurp(path), error);
@@ -64,7 +71,7 @@ JsonLine parse_file(const std::string& path) {
 
 TEST_CASE("an uncertain contact is re-looked from ~90 degrees and confirmed, over loopback") {
   testing::TempDir dir("mission_cli");
-  const std::string model = train_model(dir);
+  const std::string& model = shared_model();
   const std::string report = dir.file("mission.json");
   const int rc = run_logged(dir,
                             "mission " + kTwoTargetsScenario + " --model " + model + " --rate " +
@@ -114,7 +121,7 @@ TEST_CASE("an uncertain contact is re-looked from ~90 degrees and confirmed, ove
 
 TEST_CASE("Ctrl-C stops the mission's three processes and still writes the report") {
   testing::TempDir dir("mission_stop");
-  const std::string model = train_model(dir);
+  const std::string& model = shared_model();
   const std::string report = dir.file("mission.json");
   const std::string log = dir.file("logs/agent.log");
   const pid_t pid = fork();

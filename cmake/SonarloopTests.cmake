@@ -13,14 +13,34 @@
 # (test_NAME_may_skip), so that their skip (exit 77) shows as skipped without ending the file's
 # other cases.
 
-# The precompiled header every test executable reuses: compiled once, with the flags of the tests.
+# The precompiled header every test executable reuses: compiled once, with the flags of the tests
+# (and in the ASan build once more at -O0, for the folders compiled at -O0: a PCH serves only
+# the optimisation level it was made with).
 function(sonarloop_add_test_pch)
-  add_library(sonarloop_test_pch OBJECT ${PROJECT_SOURCE_DIR}/tests/support/test_pch.cpp)
-  target_link_libraries(sonarloop_test_pch PRIVATE Catch2::Catch2 Eigen3::Eigen)
-  target_include_directories(sonarloop_test_pch PRIVATE ${PROJECT_SOURCE_DIR})
-  sonarloop_test_settings(sonarloop_test_pch)
-  target_precompile_headers(sonarloop_test_pch PRIVATE ${PROJECT_SOURCE_DIR}/tests/support/test_pch.h)
+  set(pchs sonarloop_test_pch)
+  if(SONARLOOP_SANITIZE)
+    list(APPEND pchs sonarloop_test_pch_o0)
+  endif()
+  foreach(pch ${pchs})
+    add_library(${pch} OBJECT ${PROJECT_SOURCE_DIR}/tests/support/test_pch.cpp)
+    target_link_libraries(${pch} PRIVATE Catch2::Catch2 Eigen3::Eigen)
+    target_include_directories(${pch} PRIVATE ${PROJECT_SOURCE_DIR})
+    sonarloop_test_settings(${pch})
+    target_precompile_headers(${pch} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support/test_pch.h)
+  endforeach()
+  if(SONARLOOP_SANITIZE)
+    target_compile_options(sonarloop_test_pch_o0 PRIVATE -O0)
+  endif()
 endfunction()
+
+# Test folders whose code the ASan build compiles at -O0 (SONARLOOP_O0_TEST_FOLDERS,
+# tests/CMakeLists.txt): Catch2's assertions make large functions that clang takes 3-4x longer to
+# compile at -O1 under ASan (36 s against 10 s for one batch). Not every folder: a test
+# executable keeps one copy of each inline function (of Eigen, the standard library, the project's
+# headers) and the linker takes the first, the test code's; at -O0 that copy also serves the
+# libraries' calls, and tests that run the libraries in-process slowed 3-16x. So only the folders
+# whose tests run the sonarloop binary or parse small inputs (measured: a few seconds slower to
+# run, against ~60 s less to compile). (-O0 comes after the build type's -O1, so it wins.)
 
 # The compile settings shared by the test executables and their precompiled header (a PCH is
 # used only with the flags it was made with).
@@ -37,13 +57,18 @@ endfunction()
 # test_<folder> for the current source folder below tests/, created on first use.
 function(sonarloop_test_executable out_var)
   file(RELATIVE_PATH folder ${PROJECT_SOURCE_DIR}/tests ${CMAKE_CURRENT_SOURCE_DIR})
-  string(REPLACE "/" "_" folder ${folder})
-  set(exe test_${folder})
+  string(REPLACE "/" "_" name ${folder})
+  set(exe test_${name})
   if(NOT TARGET ${exe})
     add_executable(${exe})
     target_link_libraries(${exe} PRIVATE sonarloop_catch_main)
     sonarloop_test_settings(${exe})
-    target_precompile_headers(${exe} REUSE_FROM sonarloop_test_pch)
+    if(SONARLOOP_SANITIZE AND folder IN_LIST SONARLOOP_O0_TEST_FOLDERS)
+      target_compile_options(${exe} PRIVATE -O0)
+      target_precompile_headers(${exe} REUSE_FROM sonarloop_test_pch_o0)
+    else()
+      target_precompile_headers(${exe} REUSE_FROM sonarloop_test_pch)
+    endif()
   endif()
   set(${out_var} ${exe} PARENT_SCOPE)
 endfunction()

@@ -19,10 +19,15 @@ shift || true
 gen=()
 if command -v ninja >/dev/null 2>&1; then gen=(-G Ninja); fi
 # -O1 -g1: line tables for the reports; MPI off (Open MPI's own threads are not instrumented)
-cmake -S "$root" -B "$dir" "${gen[@]}" -DSONARLOOP_TSAN=ON -DSONARLOOP_MPI=OFF \
-  -DCMAKE_C_COMPILER=gcc -DCMAKE_CXX_COMPILER=g++ \
+# GCC through CC/CXX: they choose the compiler of a new build directory only (a compiler given
+# with -D to an existing one makes CMake drop its cache, and the -D options with it)
+CC=gcc CXX=g++ cmake -S "$root" -B "$dir" "${gen[@]}" -DSONARLOOP_TSAN=ON -DSONARLOOP_MPI=OFF \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" "$@" \
   >/dev/null
+if ! grep -q '^SONARLOOP_TSAN:BOOL=ON$' "$dir/CMakeCache.txt"; then
+  echo "tsan.sh: $dir is not configured with SONARLOOP_TSAN=ON; remove it and run again" >&2
+  exit 2
+fi
 cmake --build "$dir" -j "$(nproc)"
 if [ "$build_only" = 1 ]; then exit 0; fi
 # halt_on_error: a reported race fails the test; second_deadlock_stack for lock-order reports;

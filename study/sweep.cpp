@@ -52,6 +52,7 @@ SweepCondition base_condition(const SweepSettings& s, double resolution_cm) {
   c.resolution_m = resolution_cm / 100.0;
   c.train_count = s.train_count;
   c.p = s.p;
+  c.aspect_sectors = s.aspect_sectors;
   c.preprocess = s.preprocess;
   return c;
 }

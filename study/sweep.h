@@ -84,6 +84,7 @@ struct SweepSettings {
   int train_count = 80;  // per class and condition (the paper: 80)
   int test_count = 100;  // per class and condition (the paper: 10,000)
   int p = atr::kDefaultSubspaceDim;
+  int aspect_sectors = 1;              // subspaces per target (the aspect experiment sets its own)
   std::vector<double> resolutions_cm;  // empty: each experiment's own list
   // fig13's non-mine shapes (sim/targets/target_type.h); default: the paper's four
   std::vector<targets::TargetType> non_mine = {

@@ -415,6 +415,7 @@ int run_sweep(const std::vector<std::string>& argv) {
                          {"--train-count"},
                          {"--resolutions-cm"},
                          {"--p"},
+                         {"--aspect-sectors"},
                          {"--seed"},
                          {"--threads"},
                          {"--out"},
@@ -440,6 +441,7 @@ int run_sweep(const std::vector<std::string>& argv) {
   s.train_count = static_cast<int>(args.get_int("--train-count", 2, 100000).value_or(80));
   s.test_count = static_cast<int>(args.get_int("--test-count", 1, 10'000'000).value_or(100));
   s.p = static_cast<int>(args.get_int("--p", 1, 4096).value_or(atr::kDefaultSubspaceDim));
+  s.aspect_sectors = static_cast<int>(args.get_int("--aspect-sectors", 1, 360).value_or(1));
   if (const auto r = args.get("--resolutions-cm")) s.resolutions_cm = parse_resolutions_cm(*r);
   if (const auto n = args.get("--non-mine")) s.non_mine = parse_non_mine(*n);
   if (const auto n = args.get("--novel")) s.novel = parse_novel(*n, study::fig13_classes(s));
@@ -575,6 +577,9 @@ options:
   --train-count N      training chips per target (default 80, as the paper)
   --resolutions-cm L   comma list of pixel sizes in cm (default: per experiment)
   --p N                leading eigenvectors per subspace (default 20)
+  --aspect-sectors N   one subspace per target and aspect sector of 360/N deg, for every
+                       experiment but aspect (which compares 1, 4 and 8); as `sonarloop train`
+                       (default 1)
   --seed S             training dataset seed; the test set uses S + 1 (default 0)
   --threads N          render threads (default: all cores)
   --out DIR            output folder (default sweep_out)

@@ -105,6 +105,23 @@ TEST_CASE("experiments: the paper's figures and the stability studies", "[sweep]
   few.train_count = 10;
   for (const auto& c : make_sweep_experiment("p", few).conditions)
     CHECK(c.p < 10);
+
+  // --aspect-sectors: every condition trains that many subspaces per target, but the aspect
+  // experiment, which compares 1, 4 and 8
+  SweepSettings sectors = s;
+  sectors.aspect_sectors = 4;
+  for (const auto& name : {"fig11", "fig13", "fig15", "altitude", "fusion", "open_set"}) {
+    for (const auto& c : make_sweep_experiment(name, sectors).conditions) {
+      INFO(name << " " << c.series << " " << c.x);
+      CHECK(c.aspect_sectors == 4);
+    }
+  }
+  for (const auto& c : make_sweep_experiment("fig15", s).conditions)
+    CHECK(c.aspect_sectors == 1);
+  std::vector<int> compared;
+  for (const auto& c : make_sweep_experiment("aspect", sectors).conditions)
+    compared.push_back(c.aspect_sectors);
+  CHECK(compared == std::vector<int>{1, 4, 8});
 }
 
 TEST_CASE("render_groups: conditions that render alike share chips", "[sweep]") {

@@ -106,6 +106,8 @@ TEST_CASE("sweep: help and bad options", "[sweep_cli]") {
   CHECK(slurp(log).find("none.yaml") != std::string::npos);
   CHECK(run_to_log("sweep --seabed flat,flat --out " + dir.file("o"), log) == 2);
   CHECK(slurp(log).find("twice") != std::string::npos);
+  CHECK(run_to_log("sweep --aspect-sectors 0 --out " + dir.file("o"), log) == 2);
+  CHECK(slurp(log).find("--aspect-sectors") != std::string::npos);
 }
 
 TEST_CASE("sweep: highlights identify better at 5 cm than at 20 cm (Fig. 11 trend)",

@@ -51,8 +51,29 @@ int run_one(const std::string& args, const std::string& log) {
   return run_command(kBinary + " " + args + " > '" + log + "' 2>&1");
 }
 
-int run_two(const std::string& args, const std::string& log) {
-  return run_command(kMpirun + kBinary + " " + args + " > '" + log + "' 2>&1");
+// Open MPI 4.1's launcher (Debian 12's) now and then reports a rank that called MPI_Finalize and
+// exited 0 as "exiting improperly" (always "with PID 0"), when it handles the rank's exit before
+// the rank's finalize message: a race inside mpirun, open-mpi/ompi#7833, not fixed on the 4.x
+// branches, more likely on a loaded machine. A job that failed only that way runs once more;
+// any other failure, or the same one twice, fails the test.
+bool launcher_exit_race(const std::string& log) {
+  return log.find("exiting improperly") != std::string::npos &&
+         log.find("with PID 0 on") != std::string::npos &&
+         log.find("MPI_ABORT") == std::string::npos;
+}
+
+// `mpirun -np 2 sonarloop ARGS --out OUT`, its output in `log`.
+int run_two(const std::string& args, const fs::path& out, const std::string& log) {
+  for (int attempt = 1;; ++attempt) {
+    const int rc = run_command(kMpirun + kBinary + " " + args + " --out '" + out.string() +
+                               "' > '" + log + "' 2>&1");
+    if (rc == 0 || attempt == 2 || !launcher_exit_race(slurp(log))) return rc;
+    WARN(
+        "mpirun reported a rank exiting improperly after MPI_Finalize (open-mpi/ompi#7833); "
+        "running the job again:\n"
+        << slurp(log));
+    fs::remove_all(out);
+  }
 }
 
 // A sweep results CSV without its timing columns.
@@ -88,9 +109,9 @@ TEST_CASE("mpi: a dataset on 2 ranks is byte-identical to one process", "[mpi_cl
   // 7 chips x 3 classes x 2 resolutions: an odd number of jobs, unequal shares
   const std::string common =
       "dataset --count 7 --classes manta,rockan,cylinder --resolution-cm 10 --resolution-cm 20 "
-      "--seabed flat,clutter --seed 4 --threads 1 --out ";
-  REQUIRE(run_one(common + dir.file("one"), log) == 0);
-  const int rc = run_two(common + dir.file("two"), log);
+      "--seabed flat,clutter --seed 4 --threads 1";
+  REQUIRE(run_one(common + " --out " + dir.file("one"), log) == 0);
+  const int rc = run_two(common, dir.path() / "two", log);
   INFO(slurp(log));
   REQUIRE(rc == 0);
   CHECK(slurp(log).find("on 2 ranks") != std::string::npos);  // really one job of two ranks
@@ -114,9 +135,9 @@ TEST_CASE("mpi: a sweep on 2 ranks scores the same as one process", "[mpi_cli]")
   // fig11 (training then test chips per resolution) and fusion (four chip sets per resolution)
   const std::string common =
       "sweep --experiment fig11 --experiment fusion --resolutions-cm 10,20 --train-count 6 "
-      "--test-count 5 --p 4 --no-plot --seed 3 --threads 1 --out ";
-  REQUIRE(run_one(common + dir.file("one"), log) == 0);
-  const int rc = run_two(common + dir.file("two"), log);
+      "--test-count 5 --p 4 --no-plot --seed 3 --threads 1";
+  REQUIRE(run_one(common + " --out " + dir.file("one"), log) == 0);
+  const int rc = run_two(common, dir.path() / "two", log);
   INFO(slurp(log));
   REQUIRE(rc == 0);
   CHECK(slurp(log).find("on 2 ranks") != std::string::npos);
@@ -140,7 +161,7 @@ TEST_CASE("mpi: a failure on rank 0 ends the whole job", "[mpi_cli]") {
   std::FILE* f = std::fopen(dir.file("full/x").c_str(), "w");
   REQUIRE(f);
   std::fclose(f);
-  const int rc = run_two("dataset --count 2 --threads 1 --out " + dir.file("full"), log);
+  const int rc = run_two("dataset --count 2 --threads 1", dir.path() / "full", log);
   INFO(slurp(log));
   CHECK(rc != 0);
   CHECK(rc != 124);  // not ended by the timeout: the job ended itself

@@ -16,6 +16,7 @@ usage: browser_test.py SONARLOOP WORK_DIR [--keep-screenshot FILE] [--lines N] [
   "--rate 2 --classify out/atr.slpca")
 """
 import argparse
+import atexit
 import base64
 import json
 import os
@@ -27,6 +28,7 @@ import struct
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 import urllib.request
 import zlib
@@ -192,21 +194,61 @@ def find_chromium():
     return None
 
 
+class StderrLines:
+    """Reads a child's stderr on a thread of its own, so that the child never blocks on a full
+    pipe and a wait sees every line printed so far (not one line per poll), and keeps the lines
+    (copying them to `log` when given)."""
+
+    def __init__(self, stream, log=None):
+        self._lines = []
+        self._lock = threading.Lock()
+        self._log = log
+        self._thread = threading.Thread(target=self._drain, args=(stream,), daemon=True)
+        self._thread.start()
+
+    def _drain(self, stream):
+        for line in stream:
+            with self._lock:
+                self._lines.append(line)
+            if self._log:
+                self._log.write(line)
+
+    def search(self, pattern):
+        """The first match of `pattern` in the lines read so far, or None."""
+        with self._lock:
+            lines = list(self._lines)
+        for line in lines:
+            m = re.search(pattern, line)
+            if m:
+                return m
+        return None
+
+    def text(self, last=None):
+        with self._lock:
+            return "".join(self._lines[-last:] if last else self._lines)
+
+    def finish(self, timeout=WAIT_S):
+        """Waits for the end of the stream (the child has exited) and returns all of it."""
+        self._thread.join(timeout)
+        return self.text()
+
+
 def start_sonarloop(binary, run_args, log_path):
     log = open(log_path, "w")
     proc = subprocess.Popen([binary, "run"] + run_args +
                             ["--web", "127.0.0.1:0", "--stats-every", "0"],
                             stderr=subprocess.PIPE, stdout=log, text=True)
+    err = StderrLines(proc.stderr, log)
+    # a failure (sys.exit) must not leave the run behind for the rest of its --duration
+    atexit.register(lambda: proc.poll() is None and proc.kill())
 
     def url():
-        line = proc.stderr.readline()
-        log.write(line)
-        m = re.search(r"web view on (http://\S+)", line)
-        if proc.poll() is not None:
-            fail("sonarloop run ended early: " + line)
+        m = err.search(r"web view on (http://\S+)")
+        if not m and proc.poll() is not None:
+            fail("sonarloop run ended early:\n" + err.finish())
         return m.group(1) if m else None
 
-    return proc, wait_for("the web view's URL", url), log
+    return proc, wait_for("the web view's URL", url), log, err
 
 
 def main():
@@ -224,7 +266,8 @@ def main():
         sys.exit(77)
     os.makedirs(work, exist_ok=True)
 
-    run, url, run_log = start_sonarloop(binary, a.run_args.split(), os.path.join(work, "run.log"))
+    run, url, run_log, run_err = start_sonarloop(binary, a.run_args.split(),
+                                                 os.path.join(work, "run.log"))
     profile = tempfile.mkdtemp(prefix="sonarloop-chromium-")
     browser = subprocess.Popen(
         [chromium, "--headless=new", "--no-sandbox", "--disable-gpu", "--no-first-run",
@@ -232,14 +275,19 @@ def main():
          "--window-size=1500,1000", "--force-device-scale-factor=1", "about:blank"],
         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     try:
+        browser_err = StderrLines(browser.stderr)
+
         def devtools_url():
-            line = browser.stderr.readline()
-            if browser.poll() is not None:
-                fail("chromium ended: " + line)
-            m = re.search(r"DevTools listening on ws://([^/]+)/", line)
+            m = browser_err.search(r"DevTools listening on ws://([^/]+)/")
+            if not m and browser.poll() is not None:
+                fail("chromium ended:\n" + browser_err.finish())
             return m.group(1) if m else None
 
-        host = wait_for("chromium's DevTools port", devtools_url)
+        try:
+            host = wait_for("chromium's DevTools port", devtools_url)
+        except SystemExit:
+            print("chromium's last lines on stderr:\n" + browser_err.text(last=20))
+            raise
         targets = json.load(urllib.request.urlopen("http://%s/json/list" % host, timeout=WAIT_S))
         page = next(t for t in targets if t["type"] == "page")
         dt = DevTools(page["webSocketDebuggerUrl"])
@@ -300,11 +348,10 @@ def main():
 
     # the run goes on to a normal end (stopped early here, as Ctrl-C would)
     run.send_signal(signal.SIGINT)
-    rest = run.stderr.read()
-    run_log.write(rest)
-    run_log.close()
     if run.wait(timeout=WAIT_S) != 0:
-        fail("sonarloop run exited with %d:\n%s" % (run.returncode, rest))
+        fail("sonarloop run exited with %d:\n%s" % (run.returncode, run_err.finish()))
+    rest = run_err.finish()
+    run_log.close()
     m = re.search(r"web: (\d+) viewers .* (\d+) events sent", rest)
     if not m or int(m.group(1)) < 1 or int(m.group(2)) < MIN_LINES:
         fail("no web summary with a viewer in:\n" + rest)

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "atr/chip_deripple.h"
 #include "atr/chip_register.h"
 #include "atr/shadow_height.h"
 
@@ -156,20 +157,21 @@ Chip registration_chip(ChipView chip, const SweepCondition& c, std::uint64_t ind
   return chip_window(chip, side, side, centre);
 }
 
-Chip classifier_chip(const render::ChipImage& c, bool shadow_height) {
+Chip classifier_chip(const render::ChipImage& c, bool shadow_height, bool deripple) {
   Chip chip;
   chip.width = c.cols;
   chip.height = c.rows;
   chip.pixels.assign(c.pixels.begin(), c.pixels.end());
+  if (deripple) chip = deripple_chip(chip.view());
   if (!shadow_height) return chip;
   const ShadowChipGeometry g{c.params.altitude_m, c.params.ground_range_m, c.range_start_m,
                              c.resolution_m};
   return shadow_height_chip(chip.view(), g);
 }
 
-LabelledChip labelled_chip(const render::ChipImage& c, bool shadow_height) {
+LabelledChip labelled_chip(const render::ChipImage& c, bool shadow_height, bool deripple) {
   LabelledChip lc;
-  lc.chip = classifier_chip(c, shadow_height);
+  lc.chip = classifier_chip(c, shadow_height, deripple);
   lc.label = std::string(targets::target_type_info(c.params.type).key);
   lc.aspect_deg = c.params.aspect_deg;
   lc.source = "chip " + std::to_string(c.params.index);

@@ -71,12 +71,15 @@ struct ErrorRate {
 };
 ErrorRate error_rate(std::size_t errors, std::size_t n, double z = atr::kZ95);
 
-// A rendered chip as the classifier sees it: pixels 0..255 as float; with shadow_height, a
+// A rendered chip as the classifier sees it: pixels 0..255 as float; with deripple, the sand
+// ripples' periodic texture notched out (atr/chip_deripple.h); then with shadow_height, a
 // shadow chip resampled to height coordinates (atr/shadow_height.h) with the geometry the chip
 // was rendered with.
-atr::Chip classifier_chip(const render::ChipImage& c, bool shadow_height = false);
+atr::Chip classifier_chip(const render::ChipImage& c, bool shadow_height = false,
+                          bool deripple = false);
 // The same with its label (the target's key) and aspect, for training.
-atr::LabelledChip labelled_chip(const render::ChipImage& c, bool shadow_height = false);
+atr::LabelledChip labelled_chip(const render::ChipImage& c, bool shadow_height = false,
+                                bool deripple = false);
 
 // What the command line sets.
 struct SweepSettings {
@@ -104,6 +107,9 @@ struct SweepSettings {
   // shadow chips (fig15, fusion) resampled to height coordinates before anything else
   // (atr/shadow_height.h; ours, off by default as the paper)
   bool shadow_height = false;
+  // every chip's periodic sand-ripple texture notched out first (atr/chip_deripple.h; ours, off
+  // by default as the paper)
+  bool deripple = false;
   double reject_quantile = 0.95;  // open_set's calibration quantile
 };
 

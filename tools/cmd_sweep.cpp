@@ -138,7 +138,7 @@ bool render_labelled(const render::ChipRenderer& r, int slot, std::size_t count,
   const std::size_t got = render_slot(
       r, slot, count, ctx.threads,
       [&](const render::ChipImage& c) {
-        out.push_back(study::labelled_chip(c, shadow_height));
+        out.push_back(study::labelled_chip(c, shadow_height, ctx.settings.deripple));
         ctx.bar->update(++ctx.chips_done);
       },
       wall_s);
@@ -227,7 +227,8 @@ bool run_experiment(const study::SweepExperiment& e, RunContext& ctx,
       const std::size_t tested = render_slot(
           test_r, static_cast<int>(slot), n_test, ctx.threads,
           [&](const render::ChipImage& c) {
-            chip = study::classifier_chip(c, shadow_height);  // the training chips' treatment
+            // the training chips' treatment
+            chip = study::classifier_chip(c, shadow_height, ctx.settings.deripple);
             const atr::ChipView view = chip.view();
             const auto truth = static_cast<std::size_t>(
                 std::find(e.classes.begin(), e.classes.end(), c.params.type) - e.classes.begin());
@@ -329,7 +330,8 @@ bool run_fusion_experiment(const study::SweepExperiment& e, RunContext& ctx,
           ts, islot, n_test, ctx.threads,
           [&](const render::ChipImage& c) {
             ctx.bar->update(++ctx.chips_done);
-            shadow_chip = study::classifier_chip(c, ctx.settings.shadow_height);
+            shadow_chip =
+                study::classifier_chip(c, ctx.settings.shadow_height, ctx.settings.deripple);
             const auto t1 = Clock::now();
             const bool shadow_ok = cs.classify(shadow_chip.view()).ok();
             classify_s += seconds_since(t1);
@@ -425,6 +427,7 @@ int run_sweep(const std::vector<std::string>& argv) {
                          {"--sonar"},
                          {"--no-plot", false},
                          {"--shadow-height", false},
+                         {"--deripple", false},
                          {"--renderer"},
                          {"--crop"},
                          {"--multilook"},
@@ -449,6 +452,7 @@ int run_sweep(const std::vector<std::string>& argv) {
   s.renderer = renderer_option(args);
   s.preprocess = preprocess_options(args, &s.crop_auto);
   s.shadow_height = args.has("--shadow-height");
+  s.deripple = args.has("--deripple");
   s.reject_quantile = args.get_double("--reject-quantile", 0.01, 0.9999).value_or(0.95);
   const std::string sonar_arg = args.get_or("--sonar", std::string(config::kDefaultSonarPreset));
   s.sonar =
@@ -599,6 +603,9 @@ options:
   --shadow-height      resample shadow chips (fig15, fusion) from slant range to the height
                        whose shadow ends there, with each chip's altitude and range, so that a
                        target's shadow has one length from any altitude (ours; default off)
+  --deripple           notch the sand ripples' periodic texture out of every chip (the
+                       isolated peaks of its 2-D spectrum) before anything else (ours;
+                       default off)
   --reject-quantile Q  open_set's calibration quantile (default 0.95), as `sonarloop train`
 
 Ctrl-C stops after the chip in progress; the CSV files keep every condition scored so far.

@@ -623,6 +623,8 @@ examples:
   sonarloop sweep --experiment ablation --test-count 1000 --out /tmp/ablation
   sonarloop sweep --experiment fig13 --crop auto --out /tmp/fig13_crop
   sonarloop sweep --experiment fig15 --shadow-height --out /tmp/fig15_height
+  sonarloop sweep --experiment fusion13 --shadow-height --deripple --crop auto \
+      --train-count 320 --out /tmp/fused
   mpirun -np 8 sonarloop sweep --experiment fig11 --test-count 10000 --out /scratch/fig11
 )",
     run_sweep, 65};

@@ -110,12 +110,16 @@ bool strict_local_max(const Spectrum& s, int fy, int fx) {
 }
 
 // Scales every bin of the block of half-width `half` around (fy, fx) whose power is above
-// `floor` down to it.
+// `floor` down to it (and records its new power, so that a bin in two overlapping blocks is
+// scaled once, to the lower floor).
 void notch(Spectrum& s, int fy, int fx, int half, double floor) {
   for (int dy = -half; dy <= half; ++dy) {
     for (int dx = -half; dx <= half; ++dx) {
       const std::size_t i = static_cast<std::size_t>(wrap(fy + dy, s.h)) * s.w + wrap(fx + dx, s.w);
-      if (s.power[i] > floor && s.power[i] > 0.0) s.x[i] *= std::sqrt(floor / s.power[i]);
+      if (s.power[i] > floor && s.power[i] > 0.0) {
+        s.x[i] *= std::sqrt(floor / s.power[i]);
+        s.power[i] = floor;
+      }
     }
   }
 }

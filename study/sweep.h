@@ -219,6 +219,8 @@ struct ConditionResult {
   std::size_t mine_n = 0, mine_errors = 0;
   std::vector<std::size_t> aspect_n, aspect_errors;  // (classes x aspect bins), row-major
   std::vector<std::size_t> seabed_n, seabed_errors;  // (seabeds) identification per test seabed
+  // (classes x seabeds), row-major: identification per target and test seabed
+  std::vector<std::size_t> class_seabed_n, class_seabed_errors;
   // open-set rejection: known-class chips called unknown; held-out-class chips not called unknown
   std::size_t known_n = 0, known_rejected = 0;
   std::size_t unknown_n = 0, unknown_accepted = 0;
@@ -251,5 +253,10 @@ void score_chip(ConditionResult& out, const SweepExperiment& e, const atr::Model
 std::string results_csv(const SweepExperiment& e, const std::vector<ConditionResult>& results);
 //   confusion: experiment,series,x_name,x,truth,predicted,count
 std::string confusion_csv(const SweepExperiment& e, const std::vector<ConditionResult>& results);
+//   seabed: experiment,series,x_name,x,resolution_cm,class,seabed,n,errors,error_pct,ci_low_pct,
+//           ci_high_pct: each target's identification on each test seabed (where a target's
+//           errors lie: the results' seabed_NAME rows pool the targets); the header alone when
+//           the experiment has one seabed
+std::string seabed_csv(const SweepExperiment& e, const std::vector<ConditionResult>& results);
 
 }  // namespace sonarloop::study

@@ -64,6 +64,8 @@ ConditionResult::ConditionResult(std::size_t index, const SweepExperiment& e, co
   aspect_errors.assign(cells, 0);
   seabed_n.assign(e.seabed_names.size(), 0);
   seabed_errors.assign(e.seabed_names.size(), 0);
+  class_seabed_n.assign(e.classes.size() * e.seabed_names.size(), 0);
+  class_seabed_errors.assign(e.classes.size() * e.seabed_names.size(), 0);
 }
 
 void score_chip(ConditionResult& out, const SweepExperiment& e, const Model& m, std::size_t truth,
@@ -98,6 +100,9 @@ void score_chip(ConditionResult& out, const SweepExperiment& e, const Model& m, 
   if (seabed >= 0 && static_cast<std::size_t>(seabed) < out.seabed_n.size()) {
     ++out.seabed_n[static_cast<std::size_t>(seabed)];
     out.seabed_errors[static_cast<std::size_t>(seabed)] += wrong;
+    const std::size_t cell = truth * out.seabed_n.size() + static_cast<std::size_t>(seabed);
+    ++out.class_seabed_n[cell];
+    out.class_seabed_errors[cell] += wrong;
   }
 }
 
@@ -189,6 +194,29 @@ std::string confusion_csv(const SweepExperiment& e, const std::vector<ConditionR
         out += e.name + "," + c.series + "," + c.x_name + "," + format_number(c.x) + "," +
                cm.truth_classes()[t] + "," + cm.predicted_classes()[p] + "," +
                std::to_string(cm.count(t, p)) + "\n";
+      }
+    }
+  }
+  return out;
+}
+
+std::string seabed_csv(const SweepExperiment& e, const std::vector<ConditionResult>& results) {
+  std::string out =
+      "experiment,series,x_name,x,resolution_cm,class,seabed,n,errors,error_pct,ci_low_pct,"
+      "ci_high_pct\n";
+  if (e.seabed_names.size() < 2) return out;
+  const std::size_t seabeds = e.seabed_names.size();
+  for (const ConditionResult& r : results) {
+    const SweepCondition& c = e.conditions.at(r.condition);
+    for (std::size_t t = 0; t < e.classes.size(); ++t) {
+      for (std::size_t b = 0; b < seabeds; ++b) {
+        const ErrorRate er =
+            error_rate(r.class_seabed_errors[t * seabeds + b], r.class_seabed_n[t * seabeds + b]);
+        out += e.name + "," + c.series + "," + c.x_name + "," + format_number(c.x) + "," +
+               format_number(c.resolution_m * 100.0) + "," +
+               std::string(targets::target_type_info(e.classes[t]).key) + "," + e.seabed_names[b] +
+               "," + std::to_string(er.n) + "," + std::to_string(er.errors) + "," +
+               format_pct(er.rate) + "," + format_pct(er.ci.lo) + "," + format_pct(er.ci.hi) + "\n";
       }
     }
   }

@@ -122,6 +122,13 @@ struct RunContext {
   double chips_done = 0.0;
 };
 
+// Each target's identification per test seabed, when the experiment has several seabeds.
+void write_seabed_csv(const RunContext& ctx, const study::SweepExperiment& e,
+                      const std::vector<study::ConditionResult>& results) {
+  if (e.seabed_names.size() < 2) return;
+  write_file(ctx.out_dir / (e.name + "_seabed.csv"), study::seabed_csv(e, results));
+}
+
 // One condition being tested: its classifier and its scores.
 struct Trial {
   std::unique_ptr<atr::Classifier> classifier;
@@ -179,6 +186,7 @@ bool run_experiment(const study::SweepExperiment& e, RunContext& ctx,
   const auto write_all = [&] {
     write_file(ctx.out_dir / (e.name + ".csv"), study::results_csv(e, results));
     write_file(ctx.out_dir / (e.name + "_confusion.csv"), study::confusion_csv(e, results));
+    write_seabed_csv(ctx, e, results);
   };
   for (const study::RenderGroup& g : study::render_groups(e)) {
     const render::ChipRenderer train_r(study::render_group_spec(e, g, ctx.settings, false));
@@ -376,6 +384,7 @@ bool run_fusion_experiment(const study::SweepExperiment& e, RunContext& ctx,
                 [](const auto& a, const auto& b) { return a.condition < b.condition; });
       write_file(ctx.out_dir / (e.name + ".csv"), study::results_csv(e, results));
       write_file(ctx.out_dir / (e.name + "_confusion.csv"), study::confusion_csv(e, results));
+      write_seabed_csv(ctx, e, results);
       if (tested < n_test) return false;
     }
   }
@@ -570,6 +579,9 @@ Writes to --out DIR (rewritten after every resolution, so an interrupted run kee
                       the test chips on one seabed, 'false_reject' / 'unknown_accepted' for
                       open_set; render time is thread-seconds per chip)
   NAME_confusion.csv  experiment,series,x_name,x,truth,predicted,count
+  NAME_seabed.csv     experiment,series,x_name,x,resolution_cm,class,seabed,n,errors,
+                      error_pct,ci_low_pct,ci_high_pct: each target on each test seabed
+                      (written when there are several seabeds)
   *.png               charts by tools/plot_sweep.py (run when matplotlib is available,
                       otherwise the command is printed)
 The paper used 80 training chips per target and 40,000 test chips per resolution; the default

@@ -73,6 +73,18 @@ def classes_of(rows):
     return seen
 
 
+def finish_error_axis(ax, title, x_name):
+    """Title, x label (log where the x is), a 0-100 % misidentification axis, grid, legend."""
+    ax.set_title(title)
+    ax.set_xlabel(X_LABEL.get(x_name, x_name))
+    ax.set_ylabel("misidentification (%)")
+    ax.set_ylim(0, 100)
+    if x_name in LOG_X:
+        ax.set_xscale("log")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+
+
 def plot_error_curves(name, rows, out_dir):
     """One panel per series: error per class against x (fig11/13/15 and the stability runs)."""
     groups = series_of([r for r in rows if r["x_name"] != "aspect_deg"])
@@ -88,14 +100,7 @@ def plot_error_curves(name, rows, out_dir):
             style = (dict(lw=2.5, color="black") if cls == "all" else
                      dict(lw=1.0, ls="--") if cls.startswith("seabed_") else dict(lw=1.2))
             ax.errorbar(x, y, yerr=[lo, hi], marker="o", ms=3, capsize=2, label=cls, **style)
-        ax.set_title(f"{name} {series}".strip() + ": misidentification")
-        ax.set_xlabel(X_LABEL.get(x_name, x_name))
-        ax.set_ylabel("misidentification (%)")
-        ax.set_ylim(0, 100)
-        if x_name in LOG_X:
-            ax.set_xscale("log")
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
+        finish_error_axis(ax, f"{name} {series}".strip() + ": misidentification", x_name)
     if mine:
         ax = axes[0][-1]
         for series, srows in groups.items():
@@ -108,6 +113,31 @@ def plot_error_curves(name, rows, out_dir):
         ax.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(os.path.join(out_dir, f"{name}.png"), dpi=DPI)
+    plt.close(fig)
+
+
+def plot_seabed(name, path, out_dir):
+    """NAME_seabed.csv: one panel per test seabed, each target's error against x (one series:
+    the first; the aspect experiment's per-series seabeds are in the CSV)."""
+    rows = read_rows(path)
+    if not rows:
+        return
+    first = rows[0]["series"]
+    rows = [r for r in rows if r["series"] == first]
+    x_name = rows[0]["x_name"]
+    seabeds = []
+    for r in rows:
+        if r["seabed"] not in seabeds:
+            seabeds.append(r["seabed"])
+    fig, axes = plt.subplots(1, len(seabeds), figsize=(5.0 * len(seabeds), 4.0), squeeze=False)
+    for ax, seabed in zip(axes[0], seabeds):
+        srows = [r for r in rows if r["seabed"] == seabed]
+        for cls in classes_of(srows):
+            x, y, lo, hi = curve(srows, cls, x_name)
+            ax.errorbar(x, y, yerr=[lo, hi], marker="o", ms=3, capsize=2, label=cls, lw=1.2)
+        finish_error_axis(ax, f"{name} {first}".strip() + f": on {seabed}", x_name)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out_dir, f"{name}_seabed.png"), dpi=DPI)
     plt.close(fig)
 
 
@@ -336,7 +366,7 @@ def main(argv):
     out_dir = argv[1]
     tables = OrderedDict()
     for fname in sorted(os.listdir(out_dir)):
-        if fname.endswith(".csv") and not fname.endswith("_confusion.csv"):
+        if fname.endswith(".csv") and not fname.endswith(("_confusion.csv", "_seabed.csv")):
             rows = read_rows(os.path.join(out_dir, fname))
             if rows:
                 tables[fname[:-4]] = rows
@@ -351,6 +381,9 @@ def main(argv):
             plot_overall(name, rows, out_dir, extra=("unknown_accepted", "false_reject"))
         else:
             plot_error_curves(name, rows, out_dir)
+        per_seabed = os.path.join(out_dir, f"{name}_seabed.csv")
+        if os.path.exists(per_seabed):
+            plot_seabed(name, per_seabed, out_dir)
         conf = os.path.join(out_dir, f"{name}_confusion.csv")
         if os.path.exists(conf) and name != "aspect":
             plot_confusion(name, conf, out_dir)

@@ -46,6 +46,14 @@ Model toy_model(const std::vector<std::string>& names) {
   return m;
 }
 
+// A toy model with the experiment's classes, in its order.
+Model experiment_model(const SweepExperiment& e) {
+  std::vector<std::string> names;
+  for (TargetType t : e.classes)
+    names.emplace_back(targets::target_type_info(t).key);
+  return toy_model(names);
+}
+
 TEST_CASE("error_rate: rate and Wilson interval of the errors", "[sweep]") {
   const ErrorRate r = error_rate(5, 100);
   CHECK(r.rate == Approx(0.05));
@@ -157,10 +165,7 @@ TEST_CASE("score_chip and results_csv: per class, all, mine / non-mine, aspect",
   s.resolutions_cm = {5};
   SweepExperiment e = make_sweep_experiment("fig13", s);
   e.aspect_bins = 4;
-  std::vector<std::string> names;
-  for (TargetType t : e.classes)
-    names.emplace_back(targets::target_type_info(t).key);
-  const Model m = toy_model(names);  // classes in e.classes order
+  const Model m = experiment_model(e);  // classes in e.classes order
   ConditionResult r(0, e, m);
   Classification c;
   // manta (truth 0) right twice; rockan (truth 1) called box (non-mine) once at aspect 100
@@ -196,10 +201,7 @@ TEST_CASE("score_chip: identification per test seabed when there are several", "
   s.resolutions_cm = {5};
   const SweepExperiment e = make_sweep_experiment("fig11", s);
   REQUIRE(e.seabed_names == std::vector<std::string>{"flat", "ripples"});
-  std::vector<std::string> names;
-  for (TargetType t : e.classes)
-    names.emplace_back(targets::target_type_info(t).key);
-  const Model m = toy_model(names);
+  const Model m = experiment_model(e);
   ConditionResult r(0, e, m);
   Classification c;
   c.class_index = 0;
@@ -212,6 +214,32 @@ TEST_CASE("score_chip: identification per test seabed when there are several", "
   REQUIRE(rows.size() == 1 + 4 + 1 + 2);
   CHECK(rows[6].find(",seabed_flat,1,0,0.0000,") != std::string::npos);
   CHECK(rows[7].find(",seabed_ripples,2,1,50.0000,") != std::string::npos);
+
+  // per target and seabed: the rockan's error is on ripples, the manta's chips split 1 + 1
+  const auto per = lines(seabed_csv(e, {r}));
+  REQUIRE(per.size() == 1 + 4 * 2);
+  CHECK(per[0] ==
+        "experiment,series,x_name,x,resolution_cm,class,seabed,n,errors,error_pct,ci_low_pct,"
+        "ci_high_pct");
+  CHECK(per[1].rfind("fig11,,resolution_cm,5,5,manta,flat,1,0,0.0000,", 0) == 0);
+  CHECK(per[2].rfind("fig11,,resolution_cm,5,5,manta,ripples,1,0,0.0000,", 0) == 0);
+  CHECK(per[3].rfind("fig11,,resolution_cm,5,5,rockan,flat,0,0,0.0000,", 0) == 0);
+  CHECK(per[4].rfind("fig11,,resolution_cm,5,5,rockan,ripples,1,1,100.0000,", 0) == 0);
+  for (std::size_t i = 5; i < per.size(); ++i)
+    CHECK(per[i].find(",0,0,0.0000,") != std::string::npos);  // cuboid, cylinder: no chips
+}
+
+TEST_CASE("seabed_csv: the header alone with one seabed", "[sweep]") {
+  SweepSettings s = settings();
+  s.resolutions_cm = {5};
+  const SweepExperiment e = make_sweep_experiment("fig11", s);
+  REQUIRE(e.seabed_names.size() == 1);
+  const Model m = experiment_model(e);
+  ConditionResult r(0, e, m);
+  Classification c;
+  c.class_index = 0;
+  score_chip(r, e, m, 1, 0.0, 0, c);
+  CHECK(lines(seabed_csv(e, {r})).size() == 1);
 }
 
 TEST_CASE("ablation: every pre-processing variant at each resolution, labelled", "[sweep]") {

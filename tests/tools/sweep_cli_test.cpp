@@ -156,6 +156,24 @@ TEST_CASE("sweep: highlights identify better at 5 cm than at 20 cm (Fig. 11 tren
     total += std::stol(r.at("count"));
   CHECK(total == 2 * 320);
 
+  // each target on each test seabed: 80 chips per target, split over the 3 seabeds, its errors
+  // those of its row in fig11.csv
+  const auto per = read_sweep_csv(out / "fig11_seabed.csv");
+  REQUIRE(per.size() == 2 * 4 * 3);
+  for (const char* x : {"5", "20"}) {
+    for (const char* cls : {"manta", "rockan", "cuboid", "cylinder"}) {
+      long n = 0, errors = 0;
+      for (const Row& r : per) {
+        if (r.at("x") != x || r.at("class") != cls) continue;
+        n += std::stol(r.at("n"));
+        errors += std::stol(r.at("errors"));
+      }
+      INFO(x << " cm, " << cls);
+      CHECK(n == 80);
+      CHECK(errors == std::stol(find_row(rows, x, cls).at("errors")));
+    }
+  }
+
   // the chart script draws the curve and the confusion matrices (when matplotlib is there)
   const std::string python = SONARLOOP_PYTHON;
   if (sonarloop::testing::run_command(python + " -c 'import matplotlib' > /dev/null 2>&1") != 0) {
@@ -165,7 +183,8 @@ TEST_CASE("sweep: highlights identify better at 5 cm than at 20 cm (Fig. 11 tren
   const std::string script = std::string(SONARLOOP_SOURCE_DIR) + "/tools/plot_sweep.py";
   REQUIRE(sonarloop::testing::run_command(python + " " + script + " " + out.string() + " > '" +
                                           log + "' 2>&1") == 0);
-  for (const char* png : {"fig11.png", "fig11_confusion.png", "speed_accuracy.png"}) {
+  for (const char* png :
+       {"fig11.png", "fig11_confusion.png", "fig11_seabed.png", "speed_accuracy.png"}) {
     INFO(png);
     CHECK(fs::file_size(out / png) > 1000);
   }

@@ -54,6 +54,7 @@ struct ChipPreprocess {
   bool is_identity() const {
     return crop_fraction == 1.0 && multilook_px == 1 && levels == ChipLevels::kDb;
   }
+  bool operator==(const ChipPreprocess&) const = default;
 };
 
 // Throws std::invalid_argument naming the field out of range.

@@ -62,8 +62,18 @@ SweepCondition base_condition(const SweepSettings& s, double resolution_cm) {
 std::vector<SweepCondition> resolution_curve(const SweepSettings& s,
                                              const std::vector<double>& default_cm) {
   std::vector<SweepCondition> out;
-  for (double cm : s.resolutions_cm.empty() ? default_cm : s.resolutions_cm)
-    out.push_back(base_condition(s, cm));
+  for (double cm : s.resolutions_cm.empty() ? default_cm : s.resolutions_cm) {
+    if (s.looks <= 1) {
+      out.push_back(base_condition(s, cm));
+      continue;
+    }
+    for (int k = 1; k <= s.looks; ++k) {  // one curve per number of looks fused
+      SweepCondition c = base_condition(s, cm);
+      c.looks = k;
+      c.series = std::to_string(k) + (k == 1 ? " look" : " looks");
+      out.push_back(c);
+    }
+  }
   return out;
 }
 
@@ -194,6 +204,10 @@ std::vector<std::string> sweep_experiment_names() {
 }
 
 SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettings& s) {
+  if (s.looks < 1 || s.looks > kMaxSweepLooks) {
+    throw std::invalid_argument("looks " + std::to_string(s.looks) + " is outside 1.." +
+                                std::to_string(kMaxSweepLooks));
+  }
   SweepExperiment e;
   e.name = name;
   e.classes = four_targets();
@@ -357,6 +371,16 @@ SweepExperiment make_sweep_experiment(const std::string& name, const SweepSettin
   return e;
 }
 
+bool same_training(const SweepCondition& a, const SweepCondition& b) {
+  return a.resolution_m == b.resolution_m && a.altitude_min_m == b.altitude_min_m &&
+         a.altitude_max_m == b.altitude_max_m &&
+         a.source_level_offset_db == b.source_level_offset_db && a.train_count == b.train_count &&
+         a.p == b.p && a.aspect_sectors == b.aspect_sectors && a.preprocess == b.preprocess &&
+         a.held_out == b.held_out && a.reject_quantile == b.reject_quantile &&
+         a.window_m == b.window_m && a.register_centroid == b.register_centroid &&
+         a.fusion == b.fusion;
+}
+
 std::vector<RenderGroup> render_groups(const SweepExperiment& e) {
   std::vector<RenderGroup> groups;
   for (std::size_t i = 0; i < e.conditions.size(); ++i) {
@@ -373,7 +397,8 @@ std::vector<RenderGroup> render_groups(const SweepExperiment& e) {
                                    c.burial_fraction,
                                    {},
                                    {},
-                                   0});
+                                   0,
+                                   1});
       g = groups.end() - 1;
     }
     auto r = std::find(g->resolutions_m.begin(), g->resolutions_m.end(), c.resolution_m);
@@ -384,13 +409,18 @@ std::vector<RenderGroup> render_groups(const SweepExperiment& e) {
     }
     g->members[static_cast<std::size_t>(r - g->resolutions_m.begin())].push_back(i);
     g->train_count = std::max(g->train_count, c.train_count);
+    g->looks = std::max(g->looks, c.looks);
   }
   return groups;
 }
 
 render::ChipDatasetSpec render_group_spec(const SweepExperiment& e, const RenderGroup& g,
-                                          const SweepSettings& s, bool test) {
+                                          const SweepSettings& s, bool test, int look) {
   if (s.seabeds.empty()) throw std::invalid_argument("sweep: no seabed kinds");
+  if (look < 0 || look >= g.looks || (!test && look != 0)) {
+    throw std::invalid_argument("sweep: look " + std::to_string(look) + " of a group with " +
+                                std::to_string(g.looks) + " (training chips: look 0 only)");
+  }
   render::ChipDatasetSpec spec;
   spec.seed = test ? s.seed + kTestSeedOffset : s.seed;
   spec.kind = e.kind;
@@ -403,6 +433,7 @@ render::ChipDatasetSpec render_group_spec(const SweepExperiment& e, const Render
   spec.sonar.source_level_db += g.source_level_offset_db;
   spec.burial_fraction = test ? g.burial_fraction : 0.0;
   spec.renderer = s.renderer;
+  spec.look = look;
   return spec;
 }
 

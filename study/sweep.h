@@ -111,7 +111,14 @@ struct SweepSettings {
   // by default as the paper)
   bool deripple = false;
   double reject_quantile = 0.95;  // open_set's calibration quantile
+  // fig11, fig13, fig15: each test object seen in up to this many looks (passes), and one
+  // curve per number of looks fused, 1 to looks (SweepCondition::looks); 1: the paper's single
+  // chip. The other experiments score single chips whatever this is.
+  int looks = 1;
 };
+
+// The most looks a sweep fuses (SweepSettings::looks).
+inline constexpr int kMaxSweepLooks = 8;
 
 // Which chips of an object a fusion condition scores.
 enum class FusionInput { kNone, kHighlight, kShadow, kFused };
@@ -146,7 +153,16 @@ struct SweepCondition {
   bool register_centroid = false;
   FusionInput fusion = FusionInput::kNone;  // the fusion experiment's conditions
   atr::FusionNorm fusion_norm = atr::FusionNorm::kModelTypical;
+  // multi-look fusion (ours): each test object is identified from looks 0 .. looks-1 of the
+  // test dataset (render::ChipDatasetSpec::look: the same object from other passes), by the
+  // smallest sum of its looks' eq. 10 distances (atr/fusion.h; one model, so one scale);
+  // 1: from its chip alone, as the paper
+  int looks = 1;
 };
+
+// Whether two conditions of one rendering train the same model from the same chips (they differ
+// only in how the test chips are scored, e.g. the looks fused), so that one model serves both.
+bool same_training(const SweepCondition& a, const SweepCondition& b);
 
 // The registration experiment's cue window is this much larger than the chip window (m): a
 // detector's window that still holds the target when its position is off by half of it.
@@ -192,13 +208,14 @@ struct RenderGroup {
   std::vector<double> resolutions_m;              // distinct, in order of first use
   std::vector<std::vector<std::size_t>> members;  // (resolutions) condition indices
   int train_count = 0;                            // the largest of its conditions, per class
+  int looks = 1;  // test looks rendered per object: the most any of its conditions fuses
 };
 std::vector<RenderGroup> render_groups(const SweepExperiment& e);
 
-// The dataset of a render group: training (test = false, seed S; targets never buried) or test
-// (seed S + 1).
+// The dataset of a render group: training (test = false, seed S; targets never buried; look 0)
+// or test (seed S + 1) seen in look `look` (0 .. g.looks - 1).
 render::ChipDatasetSpec render_group_spec(const SweepExperiment& e, const RenderGroup& g,
-                                          const SweepSettings& settings, bool test);
+                                          const SweepSettings& settings, bool test, int look = 0);
 
 // The fusion experiment's two datasets of a render group: highlight chips (test = false: seed
 // S) and shadow chips of the same objects, all at the shadow chips' 25 m ground range.

@@ -135,6 +135,10 @@ struct Trial {
   std::unique_ptr<study::ConditionResult> result;
   double classify_s = 0.0;
   std::size_t classified = 0;
+  // multi-look conditions (SweepCondition::looks > 1): per test object, the looks' summed
+  // scores (objects x classes) and whether a look's chip was unusable
+  std::vector<float> fused;
+  std::vector<std::uint8_t> unusable;
 };
 
 // Renders the chips of one slot into labelled chips (returns false when stopped).
@@ -205,6 +209,17 @@ bool run_experiment(const study::SweepExperiment& e, RunContext& ctx,
       std::vector<Trial> trials;
       for (std::size_t ci : g.members[slot]) {
         const study::SweepCondition& c = e.conditions[ci];
+        const auto same = std::find_if(trials.begin(), trials.end(), [&](const Trial& t) {
+          return study::same_training(e.conditions[t.result->condition], c);
+        });
+        if (same != trials.end()) {  // e.g. another number of looks: the same model
+          Trial t;
+          t.result = std::make_unique<study::ConditionResult>(ci, e, same->classifier->model());
+          t.result->train_s = same->result->train_s;
+          t.classifier = std::make_unique<atr::Classifier>(same->classifier->model());
+          trials.push_back(std::move(t));
+          continue;
+        }
         atr::TrainOptions opt;
         opt.p = c.p;
         opt.aspect_sectors = c.aspect_sectors;
@@ -227,59 +242,106 @@ bool run_experiment(const study::SweepExperiment& e, RunContext& ctx,
       }
       train.clear();
 
-      // test chips: every condition classifies each one
+      // test chips: every condition classifies each one; multi-look conditions add each look's
+      // distances to the object's fused scores and score the object at their last look
       const std::size_t n_test = static_cast<std::size_t>(e.test_count) * classes;
       const bool shadow_height =
           ctx.settings.shadow_height && test_r.spec().kind == render::ChipKind::kShadow;
+      for (Trial& t : trials) {
+        if (e.conditions[t.result->condition].looks <= 1) continue;
+        t.fused.assign(n_test * classes, 0.0f);
+        t.unusable.assign(n_test, 0);
+      }
       atr::Chip chip;
-      const std::size_t tested = render_slot(
-          test_r, static_cast<int>(slot), n_test, ctx.threads,
-          [&](const render::ChipImage& c) {
-            // the training chips' treatment
-            chip = study::classifier_chip(c, shadow_height, ctx.settings.deripple);
-            const atr::ChipView view = chip.view();
-            const auto truth = static_cast<std::size_t>(
-                std::find(e.classes.begin(), e.classes.end(), c.params.type) - e.classes.begin());
-            for (Trial& t : trials) {
-              const study::SweepCondition& cond = e.conditions[t.result->condition];
-              atr::Chip registered;
-              if (cond.window_m > 0.0) {
-                registered = study::registration_chip(view, cond, c.params.index, true);
-              }
-              const auto t0 = Clock::now();
-              const atr::ChipCheck check =
-                  t.classifier->classify(cond.window_m > 0.0 ? registered.view() : view);
-              t.classify_s += seconds_since(t0);
-              if (!check.ok()) {
-                ++t.result->rejected;
-                continue;
-              }
+      const auto classify_look = [&](const render::ChipImage& c, int look) {
+        // the training chips' treatment
+        chip = study::classifier_chip(c, shadow_height, ctx.settings.deripple);
+        const atr::ChipView view = chip.view();
+        const auto truth = static_cast<std::size_t>(
+            std::find(e.classes.begin(), e.classes.end(), c.params.type) - e.classes.begin());
+        for (Trial& t : trials) {
+          const study::SweepCondition& cond = e.conditions[t.result->condition];
+          if (look >= cond.looks) continue;
+          atr::Chip registered;
+          if (cond.window_m > 0.0) {
+            registered = study::registration_chip(view, cond, c.params.index, true);
+          }
+          const auto t0 = Clock::now();
+          const atr::ChipCheck check =
+              t.classifier->classify(cond.window_m > 0.0 ? registered.view() : view);
+          t.classify_s += seconds_since(t0);
+          if (cond.looks > 1) {
+            const std::span<float> fused(t.fused.data() + c.params.index * classes, classes);
+            if (check.ok()) {
               ++t.classified;
-              study::score_chip(*t.result, e, t.classifier->model(), truth, c.params.aspect_deg,
-                                c.params.seabed, t.classifier->result());
+              atr::add_look(t.classifier->model(), t.classifier->result(),
+                            atr::FusionNorm::kModelTypical, fused);
+            } else {
+              t.unusable[c.params.index] = 1;
             }
-            ctx.bar->update(++ctx.chips_done);
-          },
-          &wall_s);
+            if (look + 1 < cond.looks) continue;
+            if (t.unusable[c.params.index]) {
+              ++t.result->rejected;
+              continue;
+            }
+            atr::Classification answer = t.classifier->result();
+            answer.class_index = atr::fused_decision(fused);
+            const auto& cls =
+                t.classifier->model().classes.at(static_cast<std::size_t>(answer.class_index));
+            answer.mine_like = answer.mine_like_by_identity = cls.mine_like;
+            study::score_chip(*t.result, e, t.classifier->model(), truth, c.params.aspect_deg,
+                              c.params.seabed, answer);
+            continue;
+          }
+          if (!check.ok()) {
+            ++t.result->rejected;
+            continue;
+          }
+          ++t.classified;
+          study::score_chip(*t.result, e, t.classifier->model(), truth, c.params.aspect_deg,
+                            c.params.seabed, t.classifier->result());
+        }
+        ctx.bar->update(++ctx.chips_done);
+      };
+      std::size_t tested = render_slot(
+          test_r, static_cast<int>(slot), n_test, ctx.threads,
+          [&](const render::ChipImage& c) { classify_look(c, 0); }, &wall_s);
+      // the other looks at the same objects; a condition is complete when its last look is
+      int looks_done = tested == n_test ? 1 : 0;
+      for (int look = 1; look < g.looks && looks_done == look; ++look) {
+        const render::ChipRenderer look_r(study::render_group_spec(e, g, ctx.settings, true, look));
+        double look_wall_s = 0.0;
+        const std::size_t n = render_slot(
+            look_r, static_cast<int>(slot), n_test, ctx.threads,
+            [&](const render::ChipImage& c) { classify_look(c, look); }, &look_wall_s);
+        wall_s += look_wall_s;
+        tested += n;
+        if (n == n_test) ++looks_done;
+      }
       // thread-seconds per chip over both sets and all ranks (including the seabed tiles made
       // on the way; the classification in the sink overlaps the workers' rendering)
       const double render_s_per_chip = (train_wall_s + wall_s) * ctx.threads * mpi::size() /
                                        static_cast<double>(got + std::max<std::size_t>(tested, 1));
+      bool any = false;
       for (Trial& t : trials) {
+        const int looks = e.conditions[t.result->condition].looks;
         t.result->render_s_per_chip = render_s_per_chip;
-        t.result->complete = tested == n_test;
+        t.result->complete = looks_done >= looks;
         t.result->classify_s_per_chip =
             t.classified ? t.classify_s / static_cast<double>(t.classified) : 0.0;
-        if (tested == 0) continue;
+        // a single-look condition keeps the chips scored before a stop; a multi-look one
+        // scores its objects at its last look only
+        if (tested == 0 || (looks > 1 && !t.result->complete)) continue;
         print_result(e, *t.result);
         results.push_back(std::move(*t.result));
+        any = true;
       }
-      if (tested > 0) {
+      if (any) {
         std::sort(results.begin(), results.end(),
                   [](const auto& a, const auto& b) { return a.condition < b.condition; });
         write_all();
       }
-      if (tested < n_test) return false;
+      if (looks_done < g.looks) return false;
     }
   }
   return true;
@@ -396,7 +458,7 @@ double experiment_chips(const study::SweepExperiment& e) {
   double total = 0.0;
   for (const study::RenderGroup& g : study::render_groups(e)) {
     total += static_cast<double>(g.resolutions_m.size()) * static_cast<double>(e.classes.size()) *
-             (g.train_count + e.test_count);
+             (g.train_count + g.looks * e.test_count);
   }
   return study::is_fusion(e) ? 2.0 * total : total;  // a highlight and a shadow chip per object
 }
@@ -437,6 +499,7 @@ int run_sweep(const std::vector<std::string>& argv) {
                          {"--no-plot", false},
                          {"--shadow-height", false},
                          {"--deripple", false},
+                         {"--looks"},
                          {"--renderer"},
                          {"--crop"},
                          {"--multilook"},
@@ -462,6 +525,7 @@ int run_sweep(const std::vector<std::string>& argv) {
   s.preprocess = preprocess_options(args, &s.crop_auto);
   s.shadow_height = args.has("--shadow-height");
   s.deripple = args.has("--deripple");
+  s.looks = static_cast<int>(args.get_int("--looks", 1, study::kMaxSweepLooks).value_or(1));
   s.reject_quantile = args.get_double("--reject-quantile", 0.01, 0.9999).value_or(0.95);
   const std::string sonar_arg = args.get_or("--sonar", std::string(config::kDefaultSonarPreset));
   s.sonar =
@@ -618,6 +682,12 @@ options:
   --deripple           notch the sand ripples' periodic texture out of every chip (the
                        isolated peaks of its 2-D spectrum) before anything else (ours;
                        default off)
+  --looks N            fig11, fig13, fig15: see each test object in N looks (the same object
+                       from N passes: another altitude, track heading, side and speckle;
+                       shadow chips keep their 25 m ground range, highlight chips draw a new
+                       one) and draw one curve per number of looks fused, 1 to N: the class of
+                       the smallest sum of the looks' distances (ours; default 1, the paper's
+                       single chip; at most 8; the other experiments score single chips)
   --reject-quantile Q  open_set's calibration quantile (default 0.95), as `sonarloop train`
 
 Ctrl-C stops after the chip in progress; the CSV files keep every condition scored so far.
@@ -637,6 +707,8 @@ examples:
   sonarloop sweep --experiment fig15 --shadow-height --out /tmp/fig15_height
   sonarloop sweep --experiment fusion13 --shadow-height --deripple --crop auto \
       --train-count 320 --out /tmp/fused
+  sonarloop sweep --experiment fig15 --shadow-height --deripple --looks 3 \
+      --resolutions-cm 5,10 --out /tmp/fig15_looks
   mpirun -np 8 sonarloop sweep --experiment fig11 --test-count 10000 --out /scratch/fig11
 )",
     run_sweep, 65};

@@ -24,7 +24,7 @@ bool serve_experiment(const study::SweepExperiment& e, const study::SweepSetting
   for (const study::RenderGroup& g : study::render_groups(e)) {
     const std::size_t n_train = static_cast<std::size_t>(g.train_count) * classes;
     const int slots = static_cast<int>(g.resolutions_m.size());
-    if (e.name == "fusion") {
+    if (study::is_fusion(e)) {
       const auto train = study::fusion_specs(e, g, settings, false);
       const auto test = study::fusion_specs(e, g, settings, true);
       const render::ChipRenderer rh(train.first), rs(train.second), th(test.first), ts(test.second);
@@ -40,6 +40,10 @@ bool serve_experiment(const study::SweepExperiment& e, const study::SweepSetting
     const render::ChipRenderer test_r(study::render_group_spec(e, g, settings, true));
     for (int slot = 0; slot < slots; ++slot) {
       if (!serve_slot({{&train_r, n_train}, {&test_r, n_test}}, slot, threads)) return false;
+      for (int look = 1; look < g.looks; ++look) {  // the test objects' other looks
+        const render::ChipRenderer look_r(study::render_group_spec(e, g, settings, true, look));
+        if (!serve_slot({{&look_r, n_test}}, slot, threads)) return false;
+      }
     }
   }
   return true;

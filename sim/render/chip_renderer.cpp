@@ -26,6 +26,7 @@ constexpr std::uint64_t kKeyChip = 0;    // (index): the chip's parameters
 constexpr std::uint64_t kKeyBlock = 1;   // (block): where a block of chips lies
 constexpr std::uint64_t kKeyRender = 2;  // (index, R): speckle and noise of a chip
 constexpr std::uint64_t kKeySeabed = 3;  // (kind seed): the seed of a shared seabed
+constexpr std::uint64_t kKeyLook = 4;    // (index, look >= 1): another pass over the object
 
 // Resolutions accepted: 5 mm (a wavelength at 300 kHz) to 1 m.
 constexpr double kMinResolution_m = 0.005;
@@ -164,6 +165,16 @@ ChipParams chip_params(const ChipDatasetSpec& spec, std::uint64_t index) {
   const double corner_x = lo + block.uniform(0.0, span);
   const double corner_y = lo + block.uniform(0.0, span);
   p.target_ne_m = Vec2(corner_x + block_x, corner_y + block_y);
+  if (spec.look > 0) {  // the same object from another pass
+    Rng pass(spec.seed, RngStream::kDataset, index, kKeyLook,
+             static_cast<std::uint64_t>(spec.look));
+    p.altitude_m = pass.uniform(spec.altitude_min_m, spec.altitude_max_m);
+    const double pass_ground = pass.uniform(spec.range_min_m, spec.range_max_m);
+    if (spec.kind != ChipKind::kShadow) p.ground_range_m = pass_ground;
+    p.track_heading_deg = wrap_deg(pass.uniform(0.0, 360.0));
+    p.side = static_cast<int>(pass.below(2));
+    p.along_offset = pass.uniform(-0.5, 0.5);
+  }
   const double look_deg = p.track_heading_deg + (p.side == 1 ? 90.0 : -90.0);
   p.aspect_deg = wrap_deg(p.target_heading_deg - look_deg);
   return p;
@@ -194,6 +205,7 @@ ChipRenderer::ChipRenderer(ChipDatasetSpec spec) : spec_(std::move(spec)) {
   if (!(spec_.range_min_m > 0.0 && spec_.range_min_m <= spec_.range_max_m)) {
     throw std::invalid_argument("dataset: need 0 < range_min_m <= range_max_m");
   }
+  if (spec_.look < 0) throw std::invalid_argument("dataset: the look must be 0 or more");
   // the sonar per resolution: isotropic pixels of R, one-bin pulse, and a maximum range that
   // holds every chip's widened ray fan (see render())
   const double ground_max =
@@ -350,8 +362,9 @@ ChipImage ChipRenderer::render(std::uint64_t index, int resolution) const {
   }
 
   // the pings, one per row
-  const std::uint64_t seed = hash_keys(spec_.seed, RngStream::kDataset, index, kKeyRender,
-                                       std::bit_cast<std::uint64_t>(chip.resolution_m));
+  std::uint64_t seed = hash_keys(spec_.seed, RngStream::kDataset, index, kKeyRender,
+                                 std::bit_cast<std::uint64_t>(chip.resolution_m));
+  if (spec_.look > 0) seed = hash_keys(seed, kKeyLook, static_cast<std::uint64_t>(spec_.look));
   const auto n = static_cast<std::size_t>(chip.rows) * static_cast<std::size_t>(chip.cols);
   chip.level_db.assign(n, 0.0f);
   chip.pixels.assign(n, 0);

@@ -131,6 +131,12 @@ struct ChipDatasetSpec {
   // The ping renderer (ping_renderer.h): the heightfield profile renderer by default, the
   // ray-traced reference on request.
   RendererKind renderer = RendererKind::kProfile;
+  // Which look at the objects: 0, the dataset's own; k >= 1, the same objects (type, seabed,
+  // position, heading) seen again from another pass: the sonar's altitude, ground range
+  // (highlight chips; shadow chips keep theirs), track heading, side and along-track offset,
+  // and the speckle, are drawn afresh for each k (multi-look fusion, `sweep --looks`). Look 0
+  // is the dataset as without this field.
+  int look = 0;
 };
 
 // What chip `index` shows: a pure function of (spec, index), whatever the resolution.

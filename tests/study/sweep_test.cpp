@@ -150,6 +150,58 @@ TEST_CASE("render_groups: conditions that render alike share chips", "[sweep]") 
   CHECK(train.resolutions_m == g[0].resolutions_m);
 }
 
+TEST_CASE("looks: one curve per number of looks fused, on the figures only", "[sweep]") {
+  SweepSettings s = settings();
+  s.resolutions_cm = {5, 10};
+  s.looks = 3;
+  for (const std::string name : {"fig11", "fig13", "fig15"}) {
+    INFO(name);
+    const SweepExperiment e = make_sweep_experiment(name, s);
+    REQUIRE(e.conditions.size() == 2 * 3);
+    for (std::size_t i = 0; i < e.conditions.size(); ++i) {
+      const SweepCondition& c = e.conditions[i];
+      CHECK(c.looks == static_cast<int>(i % 3) + 1);
+      CHECK(c.series == std::vector<std::string>{"1 look", "2 looks", "3 looks"}[i % 3]);
+      CHECK(c.resolution_m == Approx(i < 3 ? 0.05 : 0.10));
+      // the same model serves every number of looks at one resolution
+      CHECK(same_training(c, e.conditions[i - i % 3]));
+      CHECK(same_training(c, e.conditions[(i + 3) % 6]) == false);
+    }
+    const auto g = render_groups(e);
+    REQUIRE(g.size() == 1);
+    CHECK(g[0].looks == 3);
+    CHECK(g[0].members[0].size() == 3);
+    // test chips in looks 0..2 of the test seed; training chips in look 0 only
+    CHECK(render_group_spec(e, g[0], s, true, 2).look == 2);
+    CHECK(render_group_spec(e, g[0], s, true, 2).seed == render_group_spec(e, g[0], s, true).seed);
+    CHECK(render_group_spec(e, g[0], s, false).look == 0);
+    CHECK_THROWS_WITH(render_group_spec(e, g[0], s, false, 1), Catch::Contains("look 0 only"));
+    CHECK_THROWS_AS(render_group_spec(e, g[0], s, true, 3), std::invalid_argument);
+  }
+  // the other experiments score single chips; one look is the paper's curve, unlabelled
+  for (const auto& c : make_sweep_experiment("p", s).conditions)
+    CHECK(c.looks == 1);
+  CHECK(render_groups(make_sweep_experiment("p", s))[0].looks == 1);
+  s.looks = 1;
+  for (const auto& c : make_sweep_experiment("fig15", s).conditions) {
+    CHECK(c.looks == 1);
+    CHECK(c.series.empty());
+  }
+  // a condition that trains otherwise does not share its model
+  SweepCondition a = make_sweep_experiment("fig15", s).conditions[0], b = a;
+  b.looks = 2;
+  CHECK(same_training(a, b));
+  b.p = a.p + 1;
+  CHECK_FALSE(same_training(a, b));
+  b = a;
+  b.register_centroid = true;
+  CHECK_FALSE(same_training(a, b));
+  s.looks = 0;
+  CHECK_THROWS_WITH(make_sweep_experiment("fig15", s), Catch::Contains("1..8"));
+  s.looks = kMaxSweepLooks + 1;
+  CHECK_THROWS_AS(make_sweep_experiment("fig15", s), std::invalid_argument);
+}
+
 TEST_CASE("training_prefix keeps count chips per class", "[sweep]") {
   std::vector<LabelledChip> chips(12);
   for (std::size_t i = 0; i < chips.size(); ++i)

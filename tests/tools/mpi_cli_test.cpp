@@ -132,20 +132,24 @@ TEST_CASE("mpi: a sweep on 2 ranks scores the same as one process", "[mpi_cli]")
   skip_without_mpi();
   const sonarloop::testing::TempDir dir("mpi_cli_sweep");
   const std::string log = dir.file("log.txt");
-  // fig11 (training then test chips per resolution) and fusion (four chip sets per resolution)
+  // fig11 (training chips, then the test chips in each of 2 looks, per resolution) and fusion13
+  // (four chip sets per resolution; the other ranks once served only the experiment named
+  // "fusion" that way, and fell out of step on fusion13)
   const std::string common =
-      "sweep --experiment fig11 --experiment fusion --resolutions-cm 10,20 --train-count 6 "
-      "--test-count 5 --p 4 --no-plot --seed 3 --threads 1";
+      "sweep --experiment fig11 --looks 2 --experiment fusion13 --resolutions-cm 10,20 "
+      "--train-count 6 --test-count 5 --p 4 --no-plot --seed 3 --threads 1";
   REQUIRE(run_one(common + " --out " + dir.file("one"), log) == 0);
   const int rc = run_two(common, dir.path() / "two", log);
   INFO(slurp(log));
   REQUIRE(rc == 0);
   CHECK(slurp(log).find("on 2 ranks") != std::string::npos);
-  for (const std::string e : {"fig11", "fusion"}) {
+  for (const std::string e : {"fig11", "fusion13"}) {
     INFO(e);
-    const std::string conf = slurp(dir.file("one/" + e + "_confusion.csv"));
-    REQUIRE(!conf.empty());
-    CHECK(slurp(dir.file("two/" + e + "_confusion.csv")) == conf);
+    for (const std::string suffix : {"_confusion.csv", "_seabed.csv"}) {
+      const std::string counts = slurp(dir.file("one/" + e + suffix));
+      REQUIRE(!counts.empty());
+      CHECK(slurp(dir.file("two/" + e + suffix)) == counts);
+    }
     const std::string res = slurp(dir.file("one/" + e + ".csv"));
     REQUIRE(!res.empty());
     CHECK(without_times(slurp(dir.file("two/" + e + ".csv"))) == without_times(res));

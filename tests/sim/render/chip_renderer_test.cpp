@@ -157,6 +157,52 @@ TEST_CASE("chips: the same index gives the same bytes on any number of threads")
   CHECK(other.render(4, 0).pixels != one[4].pixels);
 }
 
+TEST_CASE("chips: another look is the same object from another pass") {
+  for (const ChipKind kind : {ChipKind::kHighlight, ChipKind::kShadow}) {
+    INFO(chip_kind_name(kind));
+    const ChipDatasetSpec base = spec({"flat", "ripples"}, {0.2}, kind);
+    ChipDatasetSpec look1 = base, look2 = base;
+    look1.look = 1;
+    look2.look = 2;
+    const ChipRenderer r0(base), r1(look1), r2(look2);
+    int altitude_changed = 0, track_changed = 0;
+    for (std::uint64_t i = 0; i < 24; ++i) {
+      INFO("chip " << i);
+      const ChipParams p0 = chip_params(base, i), p1 = chip_params(look1, i);
+      const ChipParams p2 = chip_params(look2, i);
+      // the object: type, seabed, position and heading
+      CHECK(p1.type == p0.type);
+      CHECK(p1.seabed == p0.seabed);
+      CHECK(p1.target_ne_m == p0.target_ne_m);
+      CHECK(p1.target_heading_deg == p0.target_heading_deg);
+      // the pass: drawn afresh within the dataset's bounds, differently for each look
+      CHECK(p1.altitude_m >= base.altitude_min_m);
+      CHECK(p1.altitude_m <= base.altitude_max_m);
+      CHECK(p1.ground_range_m >= (kind == ChipKind::kShadow ? kShadowGroundRange_m : 5.0));
+      CHECK(p1.ground_range_m <= (kind == ChipKind::kShadow ? kShadowGroundRange_m : 50.0));
+      const double look_deg = p1.track_heading_deg + (p1.side == 1 ? 90.0 : -90.0);
+      const double d = wrap360(p1.target_heading_deg - look_deg - p1.aspect_deg);
+      CHECK(std::min(d, 360.0 - d) < 1e-9);
+      altitude_changed += p1.altitude_m != p0.altitude_m && p2.altitude_m != p1.altitude_m;
+      track_changed += p1.track_heading_deg != p0.track_heading_deg &&
+                       p2.track_heading_deg != p1.track_heading_deg;
+    }
+    CHECK(altitude_changed == 24);
+    CHECK(track_changed == 24);
+    // look 0 is the dataset as before the field existed; other looks draw other chips, each
+    // the same on every call
+    const ChipImage a0 = r0.render(3, 0), a1 = r1.render(3, 0);
+    CHECK(a0.params.index == 3);
+    CHECK(a0.pixels == render_all(ChipRenderer(base), 4, 1)[3].pixels);
+    CHECK(a1.pixels != a0.pixels);
+    CHECK(a1.pixels == r1.render(3, 0).pixels);
+    CHECK(r2.render(3, 0).pixels != a1.pixels);
+  }
+  ChipDatasetSpec bad = spec({"flat"}, {0.2});
+  bad.look = -1;
+  CHECK_THROWS_WITH(ChipRenderer(bad), Catch::Contains("look"));
+}
+
 TEST_CASE("chips: the profile and the ray-traced renderers draw the same chip") {
   // the same chips by both renderers (no speckle differences: each is a pure function of the
   // chip, the renderers share the randomness): the target echo in the same place, the seabed at

@@ -20,6 +20,8 @@
 //               shapes (cuboid 100 x 50 x 40 cm, hemispheres of 100 and 50 cm, box 70 x 70 x 40
 //               cm); identification among the seven, then the mine / non-mine decision error.
 //   fig15       Fig. 15: the four targets from their shadows (ChipKind::kShadow), 5-30 cm.
+//               With SweepSettings::looks = N > 1, fig11, fig13 and fig15 see each test object
+//               in N looks and draw one curve per number of looks fused (SweepCondition::looks).
 //   aspect      error against the target's aspect, one subspace per target against several
 //               subspaces per target, each for an aspect sector (the paper's remedy).
 //   snr         stability: source level lowered step by step (the thermal noise stays, so the

@@ -65,12 +65,17 @@ def curve(rows, cls, x_name):
     return x, y, lo, hi
 
 
-def classes_of(rows):
+def distinct(rows, key):
+    """The values of column `key`, each once, in order of first appearance."""
     seen = []
     for r in rows:
-        if r["class"] not in seen:
-            seen.append(r["class"])
+        if r[key] not in seen:
+            seen.append(r[key])
     return seen
+
+
+def classes_of(rows):
+    return distinct(rows, "class")
 
 
 def finish_error_axis(ax, title, x_name):
@@ -125,10 +130,7 @@ def plot_seabed(name, path, out_dir):
     first = rows[0]["series"]
     rows = [r for r in rows if r["series"] == first]
     x_name = rows[0]["x_name"]
-    seabeds = []
-    for r in rows:
-        if r["seabed"] not in seabeds:
-            seabeds.append(r["seabed"])
+    seabeds = distinct(rows, "seabed")
     fig, axes = plt.subplots(1, len(seabeds), figsize=(5.0 * len(seabeds), 4.0), squeeze=False)
     for ax, seabed in zip(axes[0], seabeds):
         srows = [r for r in rows if r["seabed"] == seabed]
@@ -138,6 +140,42 @@ def plot_seabed(name, path, out_dir):
         finish_error_axis(ax, f"{name} {first}".strip() + f": on {seabed}", x_name)
     fig.tight_layout()
     fig.savefig(os.path.join(out_dir, f"{name}_seabed.png"), dpi=DPI)
+    plt.close(fig)
+
+
+def looks_of(series):
+    """The number of looks fused in a series named "N look" / "N looks" (sweep --looks), else None."""
+    parts = series.split(" ")
+    if len(parts) == 2 and parts[0].isdigit() and parts[1] in ("look", "looks"):
+        return int(parts[0])
+    return None
+
+
+def plot_looks(name, rows, out_dir):
+    """sweep --looks: one panel per resolution, each target's error (and fig13's mine / non-mine
+    decision error, dashed) against the looks fused."""
+    rows = [r for r in rows if looks_of(r["series"]) is not None and r["x_name"] == "resolution_cm"
+            and not r["class"].startswith("seabed_")]
+    xs = distinct(rows, "x")
+    fig, axes = plt.subplots(1, len(xs), figsize=(4.5 * len(xs), 4.0), squeeze=False)
+    for ax, x in zip(axes[0], xs):
+        xrows = [r for r in rows if r["x"] == x]
+        for cls in classes_of(xrows):
+            pts = sorted((r for r in xrows if r["class"] == cls), key=lambda r: looks_of(r["series"]))
+            k = [looks_of(r["series"]) for r in pts]
+            y = [float(r["error_pct"]) for r in pts]
+            lo = [float(r["error_pct"]) - float(r["ci_low_pct"]) for r in pts]
+            hi = [float(r["ci_high_pct"]) - float(r["error_pct"]) for r in pts]
+            style = (dict(lw=2.5, color="black") if cls == "all" else
+                     dict(lw=2.0, ls="--", color="black") if cls == "mine_vs_non_mine" else
+                     dict(lw=1.2))
+            ax.errorbar(k, y, yerr=[lo, hi], marker="o", ms=3, capsize=2, label=cls, **style)
+        ax.set_xticks(sorted({looks_of(r["series"]) for r in xrows}))
+        finish_percent_axis(ax, f"{name} at {x} cm: looks fused", "looks", 7)
+        ax.set_xlabel("looks fused")
+        ax.set_ylabel("error (%)")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out_dir, f"{name}_looks.png"), dpi=DPI)
     plt.close(fig)
 
 
@@ -381,6 +419,8 @@ def main(argv):
             plot_overall(name, rows, out_dir, extra=("unknown_accepted", "false_reject"))
         else:
             plot_error_curves(name, rows, out_dir)
+            if any(looks_of(r["series"]) for r in rows):
+                plot_looks(name, rows, out_dir)
         per_seabed = os.path.join(out_dir, f"{name}_seabed.csv")
         if os.path.exists(per_seabed):
             plot_seabed(name, per_seabed, out_dir)

@@ -286,6 +286,18 @@ TEST_CASE("sweep --looks: each object seen again and the looks' distances fused"
   const Row& three = series_all("3 looks");
   INFO("1 look " << one_look.at("error_pct") << " %, 3 looks " << three.at("error_pct") << " %");
   CHECK(num(three, "ci_high_pct") < num(one_look, "ci_low_pct"));
+
+  // the chart script adds the error against the looks fused (when matplotlib is there)
+  const std::string python = SONARLOOP_PYTHON;
+  if (sonarloop::testing::run_command(python + " -c 'import matplotlib' > /dev/null 2>&1") != 0) {
+    WARN("matplotlib not available: chart script not checked");
+    return;
+  }
+  const std::string script = std::string(SONARLOOP_SOURCE_DIR) + "/tools/plot_sweep.py";
+  REQUIRE(sonarloop::testing::run_command(python + " " + script + " " + dir.file("looks") + " > " +
+                                          dir.file("plot.log") + " 2>&1") == 0);
+  CHECK(fs::file_size(dir.path() / "looks" / "fig15_looks.png") > 1000);
+  CHECK_FALSE(fs::exists(dir.path() / "one" / "fig15_looks.png"));
 }
 
 TEST_CASE("sweep open_set: a novel type is never trained and is scored only as unknown",

@@ -437,6 +437,15 @@ render::ChipDatasetSpec render_group_spec(const SweepExperiment& e, const Render
   return spec;
 }
 
+std::vector<std::unique_ptr<render::ChipRenderer>> other_look_renderers(const SweepExperiment& e,
+                                                                        const RenderGroup& g,
+                                                                        const SweepSettings& s) {
+  std::vector<std::unique_ptr<render::ChipRenderer>> out;
+  for (int look = 1; look < g.looks; ++look)
+    out.push_back(std::make_unique<render::ChipRenderer>(render_group_spec(e, g, s, true, look)));
+  return out;
+}
+
 std::pair<render::ChipDatasetSpec, render::ChipDatasetSpec> fusion_specs(const SweepExperiment& e,
                                                                          const RenderGroup& g,
                                                                          const SweepSettings& s,

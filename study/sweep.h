@@ -46,6 +46,7 @@
 //               the four targets' highlights; every experiment also scores each test seabed.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -218,6 +219,10 @@ std::vector<RenderGroup> render_groups(const SweepExperiment& e);
 // or test (seed S + 1) seen in look `look` (0 .. g.looks - 1).
 render::ChipDatasetSpec render_group_spec(const SweepExperiment& e, const RenderGroup& g,
                                           const SweepSettings& settings, bool test, int look = 0);
+// The test chips' renderers of looks 1 .. g.looks - 1 (element k - 1 for look k), made once per
+// render group; look 0 is render_group_spec(e, g, settings, true)'s.
+std::vector<std::unique_ptr<render::ChipRenderer>> other_look_renderers(
+    const SweepExperiment& e, const RenderGroup& g, const SweepSettings& settings);
 
 // The fusion experiment's two datasets of a render group: highlight chips (test = false: seed
 // S) and shadow chips of the same objects, all at the shadow chips' 25 m ground range.

@@ -195,6 +195,7 @@ bool run_experiment(const study::SweepExperiment& e, RunContext& ctx,
   for (const study::RenderGroup& g : study::render_groups(e)) {
     const render::ChipRenderer train_r(study::render_group_spec(e, g, ctx.settings, false));
     const render::ChipRenderer test_r(study::render_group_spec(e, g, ctx.settings, true));
+    const auto look_r = study::other_look_renderers(e, g, ctx.settings);
     for (std::size_t slot = 0; slot < g.resolutions_m.size(); ++slot) {
       // training chips, shared by the conditions of this resolution
       std::vector<atr::LabelledChip> train;
@@ -309,11 +310,10 @@ bool run_experiment(const study::SweepExperiment& e, RunContext& ctx,
       // the other looks at the same objects; a condition is complete when its last look is
       int looks_done = tested == n_test ? 1 : 0;
       for (int look = 1; look < g.looks && looks_done == look; ++look) {
-        const render::ChipRenderer look_r(study::render_group_spec(e, g, ctx.settings, true, look));
         double look_wall_s = 0.0;
         const std::size_t n = render_slot(
-            look_r, static_cast<int>(slot), n_test, ctx.threads,
-            [&](const render::ChipImage& c) { classify_look(c, look); }, &look_wall_s);
+            *look_r[static_cast<std::size_t>(look - 1)], static_cast<int>(slot), n_test,
+            ctx.threads, [&](const render::ChipImage& c) { classify_look(c, look); }, &look_wall_s);
         wall_s += look_wall_s;
         tested += n;
         if (n == n_test) ++looks_done;

@@ -38,11 +38,11 @@ bool serve_experiment(const study::SweepExperiment& e, const study::SweepSetting
     }
     const render::ChipRenderer train_r(study::render_group_spec(e, g, settings, false));
     const render::ChipRenderer test_r(study::render_group_spec(e, g, settings, true));
+    const auto look_r = study::other_look_renderers(e, g, settings);
     for (int slot = 0; slot < slots; ++slot) {
       if (!serve_slot({{&train_r, n_train}, {&test_r, n_test}}, slot, threads)) return false;
-      for (int look = 1; look < g.looks; ++look) {  // the test objects' other looks
-        const render::ChipRenderer look_r(study::render_group_spec(e, g, settings, true, look));
-        if (!serve_slot({{&look_r, n_test}}, slot, threads)) return false;
+      for (const auto& r : look_r) {  // the test objects' other looks
+        if (!serve_slot({{r.get(), n_test}}, slot, threads)) return false;
       }
     }
   }

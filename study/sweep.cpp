@@ -434,6 +434,7 @@ render::ChipDatasetSpec render_group_spec(const SweepExperiment& e, const Render
   spec.burial_fraction = test ? g.burial_fraction : 0.0;
   spec.renderer = s.renderer;
   spec.look = look;
+  spec.look_geometry = s.look_geometry;
   return spec;
 }
 

@@ -118,6 +118,8 @@ struct SweepSettings {
   // curve per number of looks fused, 1 to looks (SweepCondition::looks); 1: the paper's single
   // chip. The other experiments score single chips whatever this is.
   int looks = 1;
+  // how those looks are flown (render::ChipDatasetSpec::look_geometry)
+  render::LookGeometry look_geometry = render::LookGeometry::kIndependent;
 };
 
 // The most looks a sweep fuses (SweepSettings::looks).

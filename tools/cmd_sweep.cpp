@@ -500,6 +500,7 @@ int run_sweep(const std::vector<std::string>& argv) {
                          {"--shadow-height", false},
                          {"--deripple", false},
                          {"--looks"},
+                         {"--look-geometry"},
                          {"--renderer"},
                          {"--crop"},
                          {"--multilook"},
@@ -526,6 +527,13 @@ int run_sweep(const std::vector<std::string>& argv) {
   s.shadow_height = args.has("--shadow-height");
   s.deripple = args.has("--deripple");
   s.looks = static_cast<int>(args.get_int("--looks", 1, study::kMaxSweepLooks).value_or(1));
+  if (const auto g = args.get("--look-geometry")) {
+    const auto parsed = render::parse_look_geometry(*g);
+    if (!parsed) {
+      throw UsageError("--look-geometry: '" + *g + "' is not independent or reciprocal");
+    }
+    s.look_geometry = *parsed;
+  }
   s.reject_quantile = args.get_double("--reject-quantile", 0.01, 0.9999).value_or(0.95);
   const std::string sonar_arg = args.get_or("--sonar", std::string(config::kDefaultSonarPreset));
   s.sonar =
@@ -688,6 +696,10 @@ options:
                        one) and draw one curve per number of looks fused, 1 to N: the class of
                        the smallest sum of the looks' distances (ours; default 1, the paper's
                        single chip; at most 8; the other experiments score single chips)
+  --look-geometry G    how --looks are flown: independent (default: each look a pass of its
+                       own) or reciprocal (a lawnmower's neighbouring line at the same
+                       altitude and range, past the object's other side: seen from the
+                       opposite direction; a third look repeats the first line)
   --reject-quantile Q  open_set's calibration quantile (default 0.95), as `sonarloop train`
 
 Ctrl-C stops after the chip in progress; the CSV files keep every condition scored so far.

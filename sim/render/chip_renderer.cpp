@@ -137,6 +137,16 @@ DatasetSeabed builtin_dataset_seabed(const std::string& name) {
   return s;
 }
 
+const char* look_geometry_name(LookGeometry g) {
+  return g == LookGeometry::kReciprocal ? "reciprocal" : "independent";
+}
+
+std::optional<LookGeometry> parse_look_geometry(const std::string& name) {
+  if (name == "independent") return LookGeometry::kIndependent;
+  if (name == "reciprocal") return LookGeometry::kReciprocal;
+  return std::nullopt;
+}
+
 ChipParams chip_params(const ChipDatasetSpec& spec, std::uint64_t index) {
   if (spec.classes.empty() || spec.seabeds.empty()) {
     throw std::invalid_argument("chip_params: the dataset has no classes or no seabeds");
@@ -165,15 +175,22 @@ ChipParams chip_params(const ChipDatasetSpec& spec, std::uint64_t index) {
   const double corner_x = lo + block.uniform(0.0, span);
   const double corner_y = lo + block.uniform(0.0, span);
   p.target_ne_m = Vec2(corner_x + block_x, corner_y + block_y);
-  if (spec.look > 0) {  // the same object from another pass
+  if (spec.look > 0) {  // the same object from another pass (every draw made in either mode)
     Rng pass(spec.seed, RngStream::kDataset, index, kKeyLook,
              static_cast<std::uint64_t>(spec.look));
-    p.altitude_m = pass.uniform(spec.altitude_min_m, spec.altitude_max_m);
+    const double altitude = pass.uniform(spec.altitude_min_m, spec.altitude_max_m);
     const double pass_ground = pass.uniform(spec.range_min_m, spec.range_max_m);
-    if (spec.kind != ChipKind::kShadow) p.ground_range_m = pass_ground;
-    p.track_heading_deg = wrap_deg(pass.uniform(0.0, 360.0));
-    p.side = static_cast<int>(pass.below(2));
+    const double track = wrap_deg(pass.uniform(0.0, 360.0));
+    const int side = static_cast<int>(pass.below(2));
     p.along_offset = pass.uniform(-0.5, 0.5);
+    if (spec.look_geometry == LookGeometry::kIndependent) {
+      p.altitude_m = altitude;
+      if (spec.kind != ChipKind::kShadow) p.ground_range_m = pass_ground;
+      p.track_heading_deg = track;
+      p.side = side;
+    } else if (spec.look % 2 == 1) {  // the reciprocal line, past the object's other side
+      p.track_heading_deg = wrap_deg(p.track_heading_deg + 180.0);
+    }
   }
   const double look_deg = p.track_heading_deg + (p.side == 1 ? 90.0 : -90.0);
   p.aspect_deg = wrap_deg(p.target_heading_deg - look_deg);

@@ -50,6 +50,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -100,6 +101,21 @@ struct DatasetSeabed {
   scene::SceneDesc desc;
 };
 
+// How the looks k >= 1 at a dataset's objects (ChipDatasetSpec::look) are flown.
+enum class LookGeometry {
+  // each look a pass of its own: the sonar's altitude, ground range (highlight chips), track
+  // heading and side drawn afresh
+  kIndependent,
+  // a lawnmower survey's neighbouring lines at one altitude: odd looks run the reciprocal track
+  // past the object's other side (track heading + 180 deg, the object on the same side of the
+  // vehicle, so seen from the opposite direction: aspect + 180 deg), even looks repeat look 0's
+  // line; altitude and ground range stay look 0's
+  kReciprocal,
+};
+const char* look_geometry_name(LookGeometry g);  // "independent", "reciprocal"
+// Parses "independent" or "reciprocal"; nullopt otherwise.
+std::optional<LookGeometry> parse_look_geometry(const std::string& name);
+
 // The built-in kinds, mirroring config/seabed_<name>.yaml (Pailhas et al. 2010, Sec. 2.1):
 // "flat" (very fine sand, no texture), "ripples" (very coarse sand, 0.8 m ripples), "clutter"
 // (sandy gravel with about one rock per 10 m²), "rocky" (rough rock, eroded). All at 25 m depth
@@ -132,11 +148,11 @@ struct ChipDatasetSpec {
   // ray-traced reference on request.
   RendererKind renderer = RendererKind::kProfile;
   // Which look at the objects: 0, the dataset's own; k >= 1, the same objects (type, seabed,
-  // position, heading) seen again from another pass: the sonar's altitude, ground range
-  // (highlight chips; shadow chips keep theirs), track heading, side and along-track offset,
-  // and the speckle, are drawn afresh for each k (multi-look fusion, `sweep --looks`). Look 0
-  // is the dataset as without this field.
+  // position, heading) seen again from another pass, flown as look_geometry says; the
+  // along-track offset and the speckle are drawn afresh for each k (multi-look fusion, `sweep
+  // --looks`). Look 0 is the dataset as without these fields.
   int look = 0;
+  LookGeometry look_geometry = LookGeometry::kIndependent;
 };
 
 // What chip `index` shows: a pure function of (spec, index), whatever the resolution.

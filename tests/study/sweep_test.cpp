@@ -175,8 +175,16 @@ TEST_CASE("looks: one curve per number of looks fused, on the figures only", "[s
     CHECK(render_group_spec(e, g[0], s, true, 2).look == 2);
     CHECK(render_group_spec(e, g[0], s, true, 2).seed == render_group_spec(e, g[0], s, true).seed);
     CHECK(render_group_spec(e, g[0], s, false).look == 0);
+    CHECK(render_group_spec(e, g[0], s, true, 1).look_geometry ==
+          render::LookGeometry::kIndependent);
     CHECK_THROWS_WITH(render_group_spec(e, g[0], s, false, 1), Catch::Contains("look 0 only"));
     CHECK_THROWS_AS(render_group_spec(e, g[0], s, true, 3), std::invalid_argument);
+  }
+  s.look_geometry = render::LookGeometry::kReciprocal;
+  {
+    const SweepExperiment e = make_sweep_experiment("fig15", s);
+    CHECK(render_group_spec(e, render_groups(e)[0], s, true, 1).look_geometry ==
+          render::LookGeometry::kReciprocal);
   }
   // the other experiments score single chips; one look is the paper's curve, unlabelled
   for (const auto& c : make_sweep_experiment("p", s).conditions)

@@ -110,6 +110,13 @@ TEST_CASE("sweep: help and bad options", "[sweep_cli]") {
   CHECK(slurp(log).find("--aspect-sectors") != std::string::npos);
   CHECK(run_to_log("sweep --looks 9 --out " + dir.file("o"), log) == 2);
   CHECK(slurp(log).find("--looks") != std::string::npos);
+  CHECK(run_to_log("sweep --looks 2 --look-geometry zigzag --out " + dir.file("o"), log) == 2);
+  CHECK(slurp(log).find("reciprocal") != std::string::npos);
+  REQUIRE(run_to_log("sweep --experiment fig15 --looks 2 --look-geometry reciprocal "
+                     "--resolutions-cm 20 --train-count 5 --test-count 2 --p 2 --no-plot --out " +
+                         dir.file("recip"),
+                     log) == 0);
+  CHECK(slurp(dir.file("recip/fig15.csv")).find(",2 looks,") != std::string::npos);
 }
 
 TEST_CASE("sweep: highlights identify better at 5 cm than at 20 cm (Fig. 11 trend)",

@@ -203,6 +203,47 @@ TEST_CASE("chips: another look is the same object from another pass") {
   CHECK_THROWS_WITH(ChipRenderer(bad), Catch::Contains("look"));
 }
 
+TEST_CASE("chips: reciprocal looks fly a lawnmower's neighbouring lines") {
+  for (const ChipKind kind : {ChipKind::kHighlight, ChipKind::kShadow}) {
+    INFO(chip_kind_name(kind));
+    ChipDatasetSpec base = spec({"flat", "ripples"}, {0.2}, kind);
+    base.look_geometry = LookGeometry::kReciprocal;  // look 0 is the same in either geometry
+    for (std::uint64_t i = 0; i < 24; ++i) {
+      INFO("chip " << i);
+      const ChipParams p0 = chip_params(base, i);
+      ChipDatasetSpec independent = base;
+      independent.look_geometry = LookGeometry::kIndependent;
+      CHECK(chip_params(independent, i).altitude_m == p0.altitude_m);
+      for (int look = 1; look <= 2; ++look) {
+        ChipDatasetSpec s = base;
+        s.look = look;
+        const ChipParams p = chip_params(s, i);
+        // one altitude and range for the survey, the object as it was
+        CHECK(p.altitude_m == p0.altitude_m);
+        CHECK(p.ground_range_m == p0.ground_range_m);
+        CHECK(p.type == p0.type);
+        CHECK(p.target_ne_m == p0.target_ne_m);
+        CHECK(p.side == p0.side);
+        // odd looks: the reciprocal track, so the object seen from the opposite direction;
+        // even looks: look 0's line again
+        const double turn = look % 2 == 1 ? 180.0 : 0.0;
+        const double dt = wrap360(p.track_heading_deg - p0.track_heading_deg - turn);
+        const double da = wrap360(p.aspect_deg - p0.aspect_deg - turn);
+        CHECK(std::min(dt, 360.0 - dt) < 1e-9);
+        CHECK(std::min(da, 360.0 - da) < 1e-9);
+        // the same draws as an independent look of that number (only the flight differs)
+        ChipDatasetSpec ind = independent;
+        ind.look = look;
+        CHECK(p.along_offset == chip_params(ind, i).along_offset);
+      }
+    }
+  }
+  CHECK(parse_look_geometry("reciprocal") == LookGeometry::kReciprocal);
+  CHECK(parse_look_geometry("independent") == LookGeometry::kIndependent);
+  CHECK_FALSE(parse_look_geometry("lawnmower").has_value());
+  CHECK(std::string(look_geometry_name(LookGeometry::kReciprocal)) == "reciprocal");
+}
+
 TEST_CASE("chips: the profile and the ray-traced renderers draw the same chip") {
   // the same chips by both renderers (no speckle differences: each is a pure function of the
   // chip, the renderers share the randomness): the target echo in the same place, the seabed at

@@ -1,18 +1,15 @@
 // sonarloop sweep: the resolution study of Pailhas, Petillot & Capus (2010), Sections 3-4, in
 // memory: chips from the chip renderer, the eigen-subspace classifier, misidentification with
 // 95 % Wilson intervals per target and condition, CSV files and charts (tools/plot_sweep.py).
-// The experiments and the scoring live in study/sweep.h; this file renders, times and writes.
+// The experiments and the scoring live in study/sweep.h, the run (render, train, score, write)
+// in tools/sweep_run.h; this file is the command line.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <limits>
-#include <memory>
-#include <optional>
 
-#include "atr/fusion.h"
 #include "config/loader/scenario_loader.h"
 #include "config/loader/sonar_loader.h"
 #include "sim/render/chip_renderer.h"
@@ -25,6 +22,7 @@
 #include "tools/mpi_world.h"
 #include "tools/progress.h"
 #include "tools/sweep_ranks.h"
+#include "tools/sweep_run.h"
 
 #ifndef SONARLOOP_SWEEP_PLOT_SCRIPT
 #define SONARLOOP_SWEEP_PLOT_SCRIPT "tools/plot_sweep.py"
@@ -93,376 +91,6 @@ std::vector<targets::TargetType> parse_novel(const std::string& text,
   return out;
 }
 
-void write_file(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out) throw std::runtime_error("cannot write '" + tmp.string() + "'");
-  }
-  fs::rename(tmp, path);
-}
-
-// Renders chips 0..count-1 at one resolution slot (over the MPI ranks, if any: sweep_ranks.h),
-// handing them to `sink` in index order. Returns the number of chips rendered (fewer after a
-// stop request) and the wall time.
-std::size_t render_slot(const render::ChipRenderer& r, int slot, std::size_t count, int threads,
-                        const std::function<void(const render::ChipImage&)>& sink, double* wall_s) {
-  const auto t0 = Clock::now();
-  const std::size_t done = render_sweep_chips(r, slot, count, threads, sink);
-  *wall_s = seconds_since(t0);
-  return done;
-}
-
-struct RunContext {
-  study::SweepSettings settings;
-  int threads = 1;
-  fs::path out_dir;
-  Progress* bar = nullptr;
-  double chips_done = 0.0;
-};
-
-// Each target's identification per test seabed, when the experiment has several seabeds.
-void write_seabed_csv(const RunContext& ctx, const study::SweepExperiment& e,
-                      const std::vector<study::ConditionResult>& results) {
-  if (e.seabed_names.size() < 2) return;
-  write_file(ctx.out_dir / (e.name + "_seabed.csv"), study::seabed_csv(e, results));
-}
-
-// One condition being tested: its classifier and its scores.
-struct Trial {
-  std::unique_ptr<atr::Classifier> classifier;
-  std::unique_ptr<study::ConditionResult> result;
-  double classify_s = 0.0;
-  std::size_t classified = 0;
-  // multi-look conditions (SweepCondition::looks > 1): per test object, the looks' summed
-  // scores (objects x classes) and whether a look's chip was unusable
-  std::vector<float> fused;
-  std::vector<std::uint8_t> unusable;
-};
-
-// Renders the chips of one slot into labelled chips (returns false when stopped).
-bool render_labelled(const render::ChipRenderer& r, int slot, std::size_t count, RunContext& ctx,
-                     std::vector<atr::LabelledChip>& out, double* wall_s) {
-  const bool shadow_height =
-      ctx.settings.shadow_height && r.spec().kind == render::ChipKind::kShadow;
-  const std::size_t got = render_slot(
-      r, slot, count, ctx.threads,
-      [&](const render::ChipImage& c) {
-        out.push_back(study::labelled_chip(c, shadow_height, ctx.settings.deripple));
-        ctx.bar->update(++ctx.chips_done);
-      },
-      wall_s);
-  return got == count;
-}
-
-void print_result(const study::SweepExperiment& e, const study::ConditionResult& r) {
-  const study::SweepCondition& c = e.conditions[r.condition];
-  const auto& cm = r.confusion;
-  const study::ErrorRate er = study::error_rate(cm.total() - cm.correct(), cm.total());
-  std::printf("%-10s %-22s %s=%-6g misidentified %6.2f %% [%5.2f, %5.2f] of %zu", e.name.c_str(),
-              c.series.c_str(), c.x_name.c_str(), c.x, 100.0 * er.rate, 100.0 * er.ci.lo,
-              100.0 * er.ci.hi, er.n);
-  if (e.mine_groups) {
-    const study::ErrorRate m = study::error_rate(r.mine_errors, r.mine_n);
-    std::printf(", mine/non-mine %5.2f %% [%5.2f, %5.2f]", 100.0 * m.rate, 100.0 * m.ci.lo,
-                100.0 * m.ci.hi);
-  }
-  if (c.reject_quantile > 0.0) {
-    std::printf(", false reject %5.2f %%",
-                100.0 * study::error_rate(r.known_rejected, r.known_n).rate);
-  }
-  if (c.held_out >= 0) {
-    std::printf(", held-out type accepted %5.2f %%",
-                100.0 * study::error_rate(r.unknown_accepted, r.unknown_n).rate);
-  }
-  if (r.rejected > 0) std::printf(", %zu degenerate chips not scored", r.rejected);
-  std::printf("; render %.1f ms/chip, train %.2f s, classify %.3f ms/chip%s\n",
-              1e3 * r.render_s_per_chip, r.train_s, 1e3 * r.classify_s_per_chip,
-              r.complete ? "" : " (interrupted)");
-  std::fflush(stdout);
-}
-
-// Runs one experiment; returns false when stopped.
-bool run_experiment(const study::SweepExperiment& e, RunContext& ctx,
-                    std::vector<study::ConditionResult>& results) {
-  const std::size_t classes = e.classes.size();
-  const auto write_all = [&] {
-    write_file(ctx.out_dir / (e.name + ".csv"), study::results_csv(e, results));
-    write_file(ctx.out_dir / (e.name + "_confusion.csv"), study::confusion_csv(e, results));
-    write_seabed_csv(ctx, e, results);
-  };
-  for (const study::RenderGroup& g : study::render_groups(e)) {
-    const render::ChipRenderer train_r(study::render_group_spec(e, g, ctx.settings, false));
-    const render::ChipRenderer test_r(study::render_group_spec(e, g, ctx.settings, true));
-    const auto look_r = study::other_look_renderers(e, g, ctx.settings);
-    for (std::size_t slot = 0; slot < g.resolutions_m.size(); ++slot) {
-      // training chips, shared by the conditions of this resolution
-      std::vector<atr::LabelledChip> train;
-      double wall_s = 0.0;
-      const std::size_t n_train = static_cast<std::size_t>(g.train_count) * classes;
-      if (!render_labelled(train_r, static_cast<int>(slot), n_train, ctx, train, &wall_s)) {
-        return false;
-      }
-      const std::size_t got = train.size();
-      const double train_wall_s = wall_s;
-
-      std::vector<Trial> trials;
-      for (std::size_t ci : g.members[slot]) {
-        const study::SweepCondition& c = e.conditions[ci];
-        const auto same = std::find_if(trials.begin(), trials.end(), [&](const Trial& t) {
-          return study::same_training(e.conditions[t.result->condition], c);
-        });
-        if (same != trials.end()) {  // e.g. another number of looks: the same model
-          Trial t;
-          t.result = std::make_unique<study::ConditionResult>(ci, e, same->classifier->model());
-          t.result->train_s = same->result->train_s;
-          t.classifier = std::make_unique<atr::Classifier>(same->classifier->model());
-          trials.push_back(std::move(t));
-          continue;
-        }
-        atr::TrainOptions opt;
-        opt.p = c.p;
-        opt.aspect_sectors = c.aspect_sectors;
-        opt.skip_degenerate = true;
-        opt.class_metadata = sim_class_metadata();  // mine-like flags of the target types
-        const auto t0 = Clock::now();
-        opt.preprocess = c.preprocess;
-        opt.reject_quantile = c.reject_quantile;
-        std::vector<atr::LabelledChip> chips = study::training_set(train, e, c);
-        if (c.window_m > 0.0) {  // registration: the training chips' window, centred
-          for (atr::LabelledChip& l : chips)
-            l.chip = study::registration_chip(l.chip.view(), c, 0, false);
-        }
-        atr::Model model = atr::train_model(chips, opt);
-        Trial t;
-        t.result = std::make_unique<study::ConditionResult>(ci, e, model);
-        t.result->train_s = seconds_since(t0);
-        t.classifier = std::make_unique<atr::Classifier>(std::move(model));
-        trials.push_back(std::move(t));
-      }
-      train.clear();
-
-      // test chips: every condition classifies each one; multi-look conditions add each look's
-      // distances to the object's fused scores and score the object at their last look
-      const std::size_t n_test = static_cast<std::size_t>(e.test_count) * classes;
-      const bool shadow_height =
-          ctx.settings.shadow_height && test_r.spec().kind == render::ChipKind::kShadow;
-      for (Trial& t : trials) {
-        if (e.conditions[t.result->condition].looks <= 1) continue;
-        t.fused.assign(n_test * classes, 0.0f);
-        t.unusable.assign(n_test, 0);
-      }
-      atr::Chip chip;
-      const auto classify_look = [&](const render::ChipImage& c, int look) {
-        // the training chips' treatment
-        chip = study::classifier_chip(c, shadow_height, ctx.settings.deripple);
-        const atr::ChipView view = chip.view();
-        const auto truth = static_cast<std::size_t>(
-            std::find(e.classes.begin(), e.classes.end(), c.params.type) - e.classes.begin());
-        for (Trial& t : trials) {
-          const study::SweepCondition& cond = e.conditions[t.result->condition];
-          if (look >= cond.looks) continue;
-          atr::Chip registered;
-          if (cond.window_m > 0.0) {
-            registered = study::registration_chip(view, cond, c.params.index, true);
-          }
-          const auto t0 = Clock::now();
-          const atr::ChipCheck check =
-              t.classifier->classify(cond.window_m > 0.0 ? registered.view() : view);
-          t.classify_s += seconds_since(t0);
-          if (cond.looks > 1) {
-            const std::span<float> fused(t.fused.data() + c.params.index * classes, classes);
-            if (check.ok()) {
-              ++t.classified;
-              atr::add_look(t.classifier->model(), t.classifier->result(),
-                            atr::FusionNorm::kModelTypical, fused);
-            } else {
-              t.unusable[c.params.index] = 1;
-            }
-            if (look + 1 < cond.looks) continue;
-            if (t.unusable[c.params.index]) {
-              ++t.result->rejected;
-              continue;
-            }
-            atr::Classification answer = t.classifier->result();
-            answer.class_index = atr::fused_decision(fused);
-            const auto& cls =
-                t.classifier->model().classes.at(static_cast<std::size_t>(answer.class_index));
-            answer.mine_like = answer.mine_like_by_identity = cls.mine_like;
-            study::score_chip(*t.result, e, t.classifier->model(), truth, c.params.aspect_deg,
-                              c.params.seabed, answer);
-            continue;
-          }
-          if (!check.ok()) {
-            ++t.result->rejected;
-            continue;
-          }
-          ++t.classified;
-          study::score_chip(*t.result, e, t.classifier->model(), truth, c.params.aspect_deg,
-                            c.params.seabed, t.classifier->result());
-        }
-        ctx.bar->update(++ctx.chips_done);
-      };
-      std::size_t tested = render_slot(
-          test_r, static_cast<int>(slot), n_test, ctx.threads,
-          [&](const render::ChipImage& c) { classify_look(c, 0); }, &wall_s);
-      // the other looks at the same objects; a condition is complete when its last look is
-      int looks_done = tested == n_test ? 1 : 0;
-      for (int look = 1; look < g.looks && looks_done == look; ++look) {
-        double look_wall_s = 0.0;
-        const std::size_t n = render_slot(
-            *look_r[static_cast<std::size_t>(look - 1)], static_cast<int>(slot), n_test,
-            ctx.threads, [&](const render::ChipImage& c) { classify_look(c, look); }, &look_wall_s);
-        wall_s += look_wall_s;
-        tested += n;
-        if (n == n_test) ++looks_done;
-      }
-      // thread-seconds per chip over both sets and all ranks (including the seabed tiles made
-      // on the way; the classification in the sink overlaps the workers' rendering)
-      const double render_s_per_chip = (train_wall_s + wall_s) * ctx.threads * mpi::size() /
-                                       static_cast<double>(got + std::max<std::size_t>(tested, 1));
-      bool any = false;
-      for (Trial& t : trials) {
-        const int looks = e.conditions[t.result->condition].looks;
-        t.result->render_s_per_chip = render_s_per_chip;
-        t.result->complete = looks_done >= looks;
-        t.result->classify_s_per_chip =
-            t.classified ? t.classify_s / static_cast<double>(t.classified) : 0.0;
-        // a single-look condition keeps the chips scored before a stop; a multi-look one
-        // scores its objects at its last look only
-        if (tested == 0 || (looks > 1 && !t.result->complete)) continue;
-        print_result(e, *t.result);
-        results.push_back(std::move(*t.result));
-        any = true;
-      }
-      if (any) {
-        std::sort(results.begin(), results.end(),
-                  [](const auto& a, const auto& b) { return a.condition < b.condition; });
-        write_all();
-      }
-      if (looks_done < g.looks) return false;
-    }
-  }
-  return true;
-}
-
-// The fusion experiment (atr/fusion.h): per resolution, a highlight model and a shadow model,
-// calibrated, trained on the same objects; each test object is scored from its highlight chip,
-// its shadow chip and both. Returns false when stopped.
-bool run_fusion_experiment(const study::SweepExperiment& e, RunContext& ctx,
-                           std::vector<study::ConditionResult>& results) {
-  const std::size_t classes = e.classes.size();
-  for (const study::RenderGroup& g : study::render_groups(e)) {
-    const auto [train_hl, train_sh] = study::fusion_specs(e, g, ctx.settings, false);
-    const auto [test_hl, test_sh] = study::fusion_specs(e, g, ctx.settings, true);
-    const render::ChipRenderer rh(train_hl), rs(train_sh), th(test_hl), ts(test_sh);
-    for (std::size_t slot = 0; slot < g.resolutions_m.size(); ++slot) {
-      const auto& members = g.members[slot];
-      const study::SweepCondition& c0 = e.conditions[members.front()];
-      const std::size_t n_train = static_cast<std::size_t>(g.train_count) * classes;
-      const std::size_t n_test = static_cast<std::size_t>(e.test_count) * classes;
-      const int islot = static_cast<int>(slot);
-      double wall = 0.0, render_s = 0.0;
-      std::vector<atr::LabelledChip> hl, sh;
-      if (!render_labelled(rh, islot, n_train, ctx, hl, &wall)) return false;
-      render_s += wall;
-      if (!render_labelled(rs, islot, n_train, ctx, sh, &wall)) return false;
-      render_s += wall;
-      atr::TrainOptions opt;
-      opt.p = c0.p;
-      opt.skip_degenerate = true;
-      opt.calibrate = true;
-      opt.class_metadata = sim_class_metadata();
-      opt.preprocess = c0.preprocess;
-      const auto t0 = Clock::now();
-      atr::Classifier ch(atr::train_model(study::training_set(hl, e, c0), opt));
-      opt.preprocess.crop_fraction = ctx.settings.preprocess.crop_fraction;  // not crop auto
-      atr::Classifier cs(atr::train_model(study::training_set(sh, e, c0), opt));
-      atr::check_same_classes(ch.model(), cs.model());
-      const double train_s = seconds_since(t0);
-      std::vector<study::ConditionResult> rs_out;
-      for (std::size_t ci : members)
-        rs_out.emplace_back(ci, e, ch.model());
-
-      // highlight test chips first, then each shadow chip scored with its object's highlight
-      hl.clear();
-      if (!render_labelled(th, islot, n_test, ctx, hl, &wall)) return false;
-      render_s += wall;
-      std::vector<std::optional<atr::Classification>> by_highlight(hl.size());
-      for (std::size_t i = 0; i < hl.size(); ++i) {
-        if (ch.classify(hl[i].chip.view()).ok()) by_highlight[i] = ch.result();
-      }
-      std::vector<float> fused(classes);
-      atr::Chip shadow_chip;
-      double classify_s = 0.0;
-      const std::size_t tested = render_slot(
-          ts, islot, n_test, ctx.threads,
-          [&](const render::ChipImage& c) {
-            ctx.bar->update(++ctx.chips_done);
-            shadow_chip =
-                study::classifier_chip(c, ctx.settings.shadow_height, ctx.settings.deripple);
-            const auto t1 = Clock::now();
-            const bool shadow_ok = cs.classify(shadow_chip.view()).ok();
-            classify_s += seconds_since(t1);
-            const auto& h = by_highlight.at(c.params.index);
-            const auto truth = static_cast<std::size_t>(
-                std::find(e.classes.begin(), e.classes.end(), c.params.type) - e.classes.begin());
-            for (std::size_t k = 0; k < members.size(); ++k) {
-              const study::SweepCondition& cond = e.conditions[members[k]];
-              study::ConditionResult& r = rs_out[k];
-              if (!shadow_ok || !h) {  // both chips are needed for a like-for-like comparison
-                ++r.rejected;
-                continue;
-              }
-              atr::Classification answer =
-                  cond.fusion == study::FusionInput::kShadow ? cs.result() : *h;
-              if (cond.fusion == study::FusionInput::kFused) {
-                std::fill(fused.begin(), fused.end(), 0.0f);
-                atr::add_look(ch.model(), *h, cond.fusion_norm, fused);
-                atr::add_look(cs.model(), cs.result(), cond.fusion_norm, fused);
-                answer.class_index = atr::fused_decision(fused);
-                // the mine / non-mine decision is the fused class's group (Sec. 4.1.2)
-                answer.mine_like =
-                    ch.model().classes.at(static_cast<std::size_t>(answer.class_index)).mine_like;
-              }
-              study::score_chip(r, e, ch.model(), truth, c.params.aspect_deg, c.params.seabed,
-                                answer);
-            }
-          },
-          &wall);
-      render_s += wall;
-      for (study::ConditionResult& r : rs_out) {
-        r.render_s_per_chip =
-            render_s * ctx.threads * mpi::size() / static_cast<double>(2 * (n_train + n_test));
-        r.train_s = train_s;
-        r.classify_s_per_chip = tested ? classify_s / static_cast<double>(tested) : 0.0;
-        r.complete = tested == n_test;
-        if (tested == 0) continue;
-        print_result(e, r);
-        results.push_back(std::move(r));
-      }
-      std::sort(results.begin(), results.end(),
-                [](const auto& a, const auto& b) { return a.condition < b.condition; });
-      write_file(ctx.out_dir / (e.name + ".csv"), study::results_csv(e, results));
-      write_file(ctx.out_dir / (e.name + "_confusion.csv"), study::confusion_csv(e, results));
-      write_seabed_csv(ctx, e, results);
-      if (tested < n_test) return false;
-    }
-  }
-  return true;
-}
-
-// Total chips an experiment renders, for the progress bar.
-double experiment_chips(const study::SweepExperiment& e) {
-  double total = 0.0;
-  for (const study::RenderGroup& g : study::render_groups(e)) {
-    total += static_cast<double>(g.resolutions_m.size()) * static_cast<double>(e.classes.size()) *
-             (g.train_count + g.looks * e.test_count);
-  }
-  return study::is_fusion(e) ? 2.0 * total : total;  // a highlight and a shadow chip per object
-}
-
 bool matplotlib_available(const std::string& python) {
   const std::string cmd = python + " -c 'import matplotlib' >/dev/null 2>&1";
   return std::system(cmd.c_str()) == 0;
@@ -510,7 +138,7 @@ int run_sweep(const std::vector<std::string>& argv) {
   if (!args.positionals().empty()) {
     throw UsageError("unexpected argument '" + args.positionals()[0] + "'");
   }
-  RunContext ctx;
+  SweepRun ctx;
   study::SweepSettings& s = ctx.settings;
   s.seed = static_cast<std::uint64_t>(
       args.get_int("--seed", 0, std::numeric_limits<long long>::max() - 1).value_or(0));
@@ -564,7 +192,7 @@ int run_sweep(const std::vector<std::string>& argv) {
 
   double total = 0.0;
   for (const auto& e : experiments)
-    total += experiment_chips(e);
+    total += sweep_experiment_chips(e);
   install_stop_flag();
   const auto t0 = Clock::now();
   bool stopped = false;
@@ -575,8 +203,7 @@ int run_sweep(const std::vector<std::string>& argv) {
       std::fprintf(stderr, "sonarloop sweep: %s: %s (%zu conditions)\n", e.name.c_str(),
                    e.title.c_str(), e.conditions.size());
       std::vector<study::ConditionResult> results;
-      const bool done = study::is_fusion(e) ? run_fusion_experiment(e, ctx, results)
-                                            : run_experiment(e, ctx, results);
+      const bool done = run_sweep_experiment(e, ctx, results);
       if (!done) {
         stopped = true;
         break;

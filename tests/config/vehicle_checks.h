@@ -1,9 +1,17 @@
 #pragma once
-// Shared by the vehicle loader's tests (vehicle_loader_test.cpp, vehicle_loader_random_test.cpp):
-// the field-by-field comparison of two vehicles and a flat seabed to plan over.
+// Shared by the vehicle loader's tests (vehicle_loader_test.cpp, vehicle_loader_errors_test.cpp,
+// vehicle_loader_random_test.cpp): the field-by-field comparison of two vehicles, a flat seabed to
+// plan over, parsing a standalone vehicle document that must pass or fail, and the documented
+// keys of each map.
 #include <catch2/catch.hpp>
 
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "config/loader/vehicle_loader.h"
 #include "sim/vehicle/vehicle_desc.h"
+#include "tests/config/config_error_checks.h"
 
 namespace sonarloop::testing {
 
@@ -66,6 +74,57 @@ inline void check_same_vehicle(const vehicle::VehicleDesc& a, const vehicle::Veh
   CHECK(na.noise_step_s == nb.noise_step_s);
   CHECK(na.drift_step_s == nb.drift_step_s);
 }
+
+// The loader's conversion: one multiplication by the double nearest π/180.
+inline double rad(double deg) {
+  return deg * (std::numbers::pi / 180.0);
+}
+
+// Parses `yaml` as a standalone vehicle "vehicle.yaml", which must fail.
+inline config::ConfigIssue expect_vehicle_error(const std::string& yaml, const std::string& path,
+                                                const std::vector<std::string>& parts = {}) {
+  return expect_config_error(config::parse_vehicle, "vehicle.yaml", yaml, path, parts);
+}
+
+// Parses `yaml` as a standalone vehicle "vehicle.yaml", which must pass.
+inline vehicle::VehicleDesc parse_ok(const std::string& yaml) {
+  INFO("yaml:\n" << yaml);
+  try {
+    return config::parse_vehicle(yaml, "vehicle.yaml");
+  } catch (const config::ConfigError& e) {
+    FAIL("rejected: " << e.what());
+  }
+  return {};
+}
+
+// The keys of each map, in the documented order.
+inline const std::vector<std::string> kTrajectoryKeys = {
+    "kind",        "start_m",   "heading_deg", "length_m",
+    "waypoints_m", "lawnmower", "speed_m_s",   "max_turn_rate_deg_s",
+    "depth",       "sway",      "attitude"};
+inline const std::vector<std::string> kLawnmowerKeys = {
+    "origin_m", "first_leg_heading_deg", "leg_length_m", "line_spacing_m", "legs", "first_turn"};
+inline const std::vector<std::string> kDepthKeys = {
+    "mode",         "depth_m",     "altitude_m",           "max_climb_rate_m_s",
+    "look_ahead_m", "min_depth_m", "vertical_smoothing_m", "profile_step_m"};
+inline const std::vector<std::string> kSwayKeys = {"amplitude_m", "period_s", "phase_deg",
+                                                   "yaw_coupling"};
+inline const std::vector<std::string> kAttitudeKeys = {
+    "roll_gain",     "max_roll_deg",       "roll_time_constant_s", "pitch_gain",
+    "max_pitch_deg", "roll_amplitude_deg", "pitch_amplitude_deg",  "wave_period_s"};
+inline const std::vector<std::string> kNavKeys = {"position_noise_m",
+                                                  "position_drift_m_per_sqrt_s",
+                                                  "heading_bias_deg",
+                                                  "heading_noise_deg",
+                                                  "heading_drift_deg_per_sqrt_s",
+                                                  "attitude_noise_deg",
+                                                  "speed_noise_m_s",
+                                                  "speed_scale_error",
+                                                  "yaw_rate_noise_deg_s",
+                                                  "depth_noise_m",
+                                                  "altitude_noise_m",
+                                                  "noise_step_s",
+                                                  "drift_step_s"};
 
 // a flat seabed 30 m down, for planning in altitude mode
 inline double flat_seabed(double, double) {

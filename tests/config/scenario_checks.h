@@ -1,11 +1,12 @@
 #pragma once
-// Shared by the scenario, sonar and vehicle loader tests: the check of a refused scenario
-// document and the field-by-field comparison of two sonars.
+// Shared by the scenario, sonar and vehicle loader tests: the checks of a refused scenario or
+// sonar document and the field-by-field comparison of two sonars.
 #include <catch2/catch.hpp>
 #include <string>
 #include <vector>
 
 #include "config/loader/scenario_loader.h"
+#include "config/loader/sonar_loader.h"
 #include "sim/render/sonar.h"
 #include "tests/config/config_error_checks.h"
 
@@ -15,6 +16,12 @@ namespace sonarloop::testing {
 inline config::ConfigIssue expect_scenario_error(const std::string& yaml, const std::string& path,
                                                  const std::vector<std::string>& parts = {}) {
   return expect_config_error(config::parse_scenario, "scenario.yaml", yaml, path, parts);
+}
+
+// Parses `yaml` as a standalone sonar "sonar.yaml", which must fail (check_config_error).
+inline config::ConfigIssue expect_sonar_error(const std::string& yaml, const std::string& path,
+                                              const std::vector<std::string>& parts = {}) {
+  return expect_config_error(config::parse_sonar, "sonar.yaml", yaml, path, parts);
 }
 
 // exact comparison, field by field

@@ -1,7 +1,8 @@
 #pragma once
 // Shared by the scene loader's tests (scene_loader_test.cpp: defaults and values,
 // scene_loader_errors_test.cpp: every rule, scene_loader_random_test.cpp: the seeded randomized
-// tests): the error check, field-by-field comparison and a scenario that sets every key.
+// tests, with scene_yaml_tree.h): the error check, field-by-field comparison and a scenario that
+// sets every key.
 #include <catch2/catch.hpp>
 #include <string>
 #include <vector>

@@ -337,3 +337,29 @@ TEST_CASE("scene_loader: parse_scene_node on part of a larger document") {
   flat.finish();
   CHECK_THROWS_AS(parse_scene_node(parse_document("seed: 3\nsonar: {}\n", "f.yaml")), ConfigError);
 }
+
+TEST_CASE("scene_loader: issue 11, input that was silently accepted is refused") {
+  // a name with invalid UTF-8 made scene.json / truth.json invalid JSON
+  expect_error(
+      "name: \"ab\xff\xfe"
+      "c\"\n",
+      "name", {"is not valid UTF-8 (byte 0xFF at byte 2 of the text)", "allowed: text in UTF-8"});
+  expect_error("targets: [{position_m: [0, 0], name: \"\xc3\"}]\n", "targets[0].name",
+               {"is not valid UTF-8 (byte 0xC3 at byte 0"});
+  CHECK(parse_scene("name: \"caf\xc3\xa9 \xe2\x9a\x93\"\n", "u.yaml").name ==
+        "caf\xc3\xa9 \xe2\x9a\x93");
+  // an unclosed quote swallowed the next key: yaml-cpp folds it into the text "abc seed: 1 "
+  expect_error("name: \"abc\nseed: 1\n", "name",
+               {"closing quote is missing: it runs over 1 line to 'seed:' (line 2)",
+                "allowed: text with its closing quote on the same line"});
+  expect_error("seed: 3\nname: 'abc\n\n  seabed:\n", "name", {"runs over 2 lines to 'seabed:'"});
+  // a quoted text may still run over lines that are not keys, and hold a ':' on its own line
+  CHECK(parse_scene("name: \"abc\n  def\"\nseed: 2\n", "m.yaml").name == "abc def");
+  CHECK(parse_scene("name: \"a: b\"\nseed: 2\n", "m.yaml").name == "a: b");
+  CHECK(parse_scene("name: 'it''s: fine'\nseed: 2\n", "m.yaml").seed == 2);
+  // a target without position_m was put at the origin
+  expect_error(
+      "targets: [{type: manta}]\n", "targets[0].position_m",
+      {"is not set: every target needs its position",
+       "allowed: [north, east] in metres inside the seabed extent ([-50, 50] x [-50, 50])"});
+}

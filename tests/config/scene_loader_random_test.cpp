@@ -24,6 +24,7 @@
 #include "sim/targets/target_type.h"
 #include "tests/config/config_test_text.h"
 #include "tests/config/scene_loader_checks.h"
+#include "tests/config/scene_yaml_tree.h"
 #include "tests/support/temp_dir.h"
 
 using sonarloop::Rng;
@@ -42,124 +43,6 @@ using sonarloop::testing::real_text;
 // seeded randomized test (docs/style.md habit 22)
 
 namespace {
-
-struct YEntry;
-
-// A YAML tree built by the generator, written out as text, and mutated for corruptions.
-struct YNode {
-  enum class Kind { kScalar, kMap, kList };
-  // what the loader accepts at this node, so that a corruption can be made that it must reject
-  enum class Accepts { kNothing, kReal, kUInt, kName, kText, kVector, kSection };
-  Kind kind = Kind::kScalar;
-  std::string text;
-  std::vector<YEntry> map;  // in order
-  std::vector<YNode> list;
-  bool flow = false;
-  Accepts accepts = Accepts::kNothing;
-  std::vector<Range> ranges;    // kReal: one; kVector: one per component
-  bool map_or_null_ok = false;  // material, texture: a map or no value is valid too
-};
-
-struct YEntry {
-  std::string key;
-  YNode value;
-};
-
-YNode scalar(std::string text, YNode::Accepts a) {
-  YNode n;
-  n.text = std::move(text);
-  n.accepts = a;
-  return n;
-}
-
-YNode real(double v, const Range& r) {
-  YNode n = scalar(real_text(v), YNode::Accepts::kReal);
-  n.ranges = {r};
-  return n;
-}
-
-YNode vec(const std::vector<double>& v, const std::vector<Range>& r) {
-  YNode n;
-  n.kind = YNode::Kind::kList;
-  n.flow = true;
-  n.accepts = YNode::Accepts::kVector;
-  n.ranges = r;
-  for (double x : v)
-    n.list.push_back(scalar(real_text(x), YNode::Accepts::kNothing));
-  return n;
-}
-
-YNode map_node() {
-  YNode n;
-  n.kind = YNode::Kind::kMap;
-  return n;
-}
-
-YNode section_list() {
-  YNode n;
-  n.kind = YNode::Kind::kList;
-  n.accepts = YNode::Accepts::kSection;
-  return n;
-}
-
-std::string flow_text(const YNode& n) {
-  switch (n.kind) {
-    case YNode::Kind::kScalar:
-      return n.text.empty() ? "~" : n.text;
-    case YNode::Kind::kList: {
-      std::string out = "[";
-      for (std::size_t i = 0; i < n.list.size(); ++i)
-        out += (i ? ", " : "") + flow_text(n.list[i]);
-      return out + "]";
-    }
-    case YNode::Kind::kMap: {
-      std::string out = "{";
-      for (std::size_t i = 0; i < n.map.size(); ++i) {
-        out += (i ? ", " : "") + n.map[i].key + ": " + flow_text(n.map[i].value);
-      }
-      return out + "}";
-    }
-  }
-  return "";
-}
-
-bool is_block(const YNode& n) {
-  return n.kind != YNode::Kind::kScalar && !n.flow &&
-         !(n.kind == YNode::Kind::kMap ? n.map.empty() : n.list.empty());
-}
-
-void write_block(const YNode& n, int indent, std::string& out) {
-  const std::string pad(static_cast<std::size_t>(indent), ' ');
-  if (n.kind == YNode::Kind::kMap) {
-    for (const auto& [key, v] : n.map) {
-      out += pad + key + ":";
-      if (is_block(v)) {
-        out += "\n";
-        write_block(v, indent + 2, out);
-      } else {
-        const std::string t = v.kind == YNode::Kind::kScalar ? v.text : flow_text(v);
-        out += (t.empty() ? "" : " " + t) + "\n";
-      }
-    }
-    return;
-  }
-  for (const auto& item : n.list) {
-    if (is_block(item)) {
-      // the item's first line starts with "- " in place of two spaces of indentation
-      std::string sub;
-      write_block(item, indent + 2, sub);
-      out += pad + "- " + sub.substr(static_cast<std::size_t>(indent) + 2);
-    } else {
-      out += pad + "- " + flow_text(item) + "\n";
-    }
-  }
-}
-
-std::string to_yaml(const YNode& root) {
-  std::string out = "# generated\n";
-  write_block(root, 0, out);
-  return out;
-}
 
 class ScenarioGenerator {
  public:
@@ -664,30 +547,4 @@ TEST_CASE("scene_loader: random byte edits give a scene or a ConfigError, never 
                       [](const std::string& text, const char* name) { parse_scene(text, name); });
   CHECK(n.accepted > 0);
   CHECK(n.rejected > n.accepted);
-}
-
-TEST_CASE("scene_loader: issue 11, input that was silently accepted is refused") {
-  // a name with invalid UTF-8 made scene.json / truth.json invalid JSON
-  expect_error(
-      "name: \"ab\xff\xfe"
-      "c\"\n",
-      "name", {"is not valid UTF-8 (byte 0xFF at byte 2 of the text)", "allowed: text in UTF-8"});
-  expect_error("targets: [{position_m: [0, 0], name: \"\xc3\"}]\n", "targets[0].name",
-               {"is not valid UTF-8 (byte 0xC3 at byte 0"});
-  CHECK(parse_scene("name: \"caf\xc3\xa9 \xe2\x9a\x93\"\n", "u.yaml").name ==
-        "caf\xc3\xa9 \xe2\x9a\x93");
-  // an unclosed quote swallowed the next key: yaml-cpp folds it into the text "abc seed: 1 "
-  expect_error("name: \"abc\nseed: 1\n", "name",
-               {"closing quote is missing: it runs over 1 line to 'seed:' (line 2)",
-                "allowed: text with its closing quote on the same line"});
-  expect_error("seed: 3\nname: 'abc\n\n  seabed:\n", "name", {"runs over 2 lines to 'seabed:'"});
-  // a quoted text may still run over lines that are not keys, and hold a ':' on its own line
-  CHECK(parse_scene("name: \"abc\n  def\"\nseed: 2\n", "m.yaml").name == "abc def");
-  CHECK(parse_scene("name: \"a: b\"\nseed: 2\n", "m.yaml").name == "a: b");
-  CHECK(parse_scene("name: 'it''s: fine'\nseed: 2\n", "m.yaml").seed == 2);
-  // a target without position_m was put at the origin
-  expect_error(
-      "targets: [{type: manta}]\n", "targets[0].position_m",
-      {"is not set: every target needs its position",
-       "allowed: [north, east] in metres inside the seabed extent ([-50, 50] x [-50, 50])"});
 }

@@ -58,6 +58,9 @@ struct Trial {
   std::unique_ptr<study::ConditionResult> result;
   double classify_s = 0.0;
   std::size_t classified = 0;
+  // the first trial (this one or an earlier) with the same model and the same test chips (e.g.
+  // the same condition with fewer looks): its classification of a chip serves this one too
+  std::size_t same_as = 0;
   // multi-look conditions (SweepCondition::looks > 1): per test object, the looks' summed
   // scores (objects x classes) and whether a look's chip was unusable
   std::vector<float> fused;
@@ -141,6 +144,14 @@ bool run_experiment(const study::SweepExperiment& e, SweepRun& ctx,
           t.result = std::make_unique<study::ConditionResult>(ci, e, same->classifier->model());
           t.result->train_s = same->result->train_s;
           t.classifier = std::make_unique<atr::Classifier>(same->classifier->model());
+          // registration conditions of one model cut their test chips differently
+          const auto chips_alike = std::find_if(trials.begin(), trials.end(), [&](const Trial& o) {
+            const study::SweepCondition& oc = e.conditions[o.result->condition];
+            return study::same_training(oc, c) && oc.misregister_m == c.misregister_m;
+          });
+          t.same_as = chips_alike != trials.end()
+                          ? static_cast<std::size_t>(chips_alike - trials.begin())
+                          : trials.size();
           trials.push_back(std::move(t));
           continue;
         }
@@ -159,6 +170,7 @@ bool run_experiment(const study::SweepExperiment& e, SweepRun& ctx,
         }
         atr::Model model = atr::train_model(chips, opt);
         Trial t;
+        t.same_as = trials.size();
         t.result = std::make_unique<study::ConditionResult>(ci, e, model);
         t.result->train_s = seconds_since(t0);
         t.classifier = std::make_unique<atr::Classifier>(std::move(model));
@@ -177,29 +189,39 @@ bool run_experiment(const study::SweepExperiment& e, SweepRun& ctx,
         t.unusable.assign(n_test, 0);
       }
       atr::Chip chip;
+      // per chip, by the trial that classified it (Trial::same_as): its check and time
+      std::vector<std::optional<atr::ChipCheck>> checked(trials.size());
+      std::vector<double> checked_s(trials.size(), 0.0);
       const auto classify_look = [&](const render::ChipImage& c, int look) {
         // the training chips' treatment
         chip = study::classifier_chip(c, shadow_height, ctx.settings.deripple);
         const atr::ChipView view = chip.view();
         const auto truth = static_cast<std::size_t>(
             std::find(e.classes.begin(), e.classes.end(), c.params.type) - e.classes.begin());
+        std::fill(checked.begin(), checked.end(), std::nullopt);
         for (Trial& t : trials) {
           const study::SweepCondition& cond = e.conditions[t.result->condition];
           if (look >= cond.looks) continue;
-          atr::Chip registered;
-          if (cond.window_m > 0.0) {
-            registered = study::registration_chip(view, cond, c.params.index, true);
+          Trial& by = trials[t.same_as];
+          if (!checked[t.same_as]) {
+            atr::Chip registered;
+            if (cond.window_m > 0.0) {
+              registered = study::registration_chip(view, cond, c.params.index, true);
+            }
+            const auto t0 = Clock::now();
+            checked[t.same_as] =
+                by.classifier->classify(cond.window_m > 0.0 ? registered.view() : view);
+            checked_s[t.same_as] = seconds_since(t0);
           }
-          const auto t0 = Clock::now();
-          const atr::ChipCheck check =
-              t.classifier->classify(cond.window_m > 0.0 ? registered.view() : view);
-          t.classify_s += seconds_since(t0);
+          t.classify_s += checked_s[t.same_as];
+          const atr::ChipCheck& check = *checked[t.same_as];
+          const atr::Classification& classified = by.classifier->result();
           if (cond.looks > 1) {
             const std::span<float> fused(t.fused.data() + c.params.index * classes, classes);
             if (check.ok()) {
               ++t.classified;
-              atr::add_look(t.classifier->model(), t.classifier->result(),
-                            atr::FusionNorm::kModelTypical, fused);
+              atr::add_look(t.classifier->model(), classified, atr::FusionNorm::kModelTypical,
+                            fused);
             } else {
               t.unusable[c.params.index] = 1;
             }
@@ -208,7 +230,7 @@ bool run_experiment(const study::SweepExperiment& e, SweepRun& ctx,
               ++t.result->rejected;
               continue;
             }
-            atr::Classification answer = t.classifier->result();
+            atr::Classification answer = classified;
             answer.class_index = atr::fused_decision(fused);
             const auto& cls =
                 t.classifier->model().classes.at(static_cast<std::size_t>(answer.class_index));
@@ -223,7 +245,7 @@ bool run_experiment(const study::SweepExperiment& e, SweepRun& ctx,
           }
           ++t.classified;
           study::score_chip(*t.result, e, t.classifier->model(), truth, c.params.aspect_deg,
-                            c.params.seabed, t.classifier->result());
+                            c.params.seabed, classified);
         }
         ctx.bar->update(++ctx.chips_done);
       };

@@ -89,6 +89,8 @@ std::string contact_json(const Contact& c) {
       w.field("open_set_score", *c.open_set_score, kScoreDigits);
     }
   }
+  if (c.clutter_distance) w.field("clutter_distance", *c.clutter_distance, kScoreDigits);
+  if (c.target_probability) w.field("target_probability", *c.target_probability, kScoreDigits);
   if (!c.status.empty()) w.field("status", c.status);
   w.key("detection").begin_object();
   w.field("pings", c.pings);
@@ -96,6 +98,10 @@ std::string contact_json(const Contact& c) {
   w.field("height_m", c.height_m, kMetreDigits);
   w.field("shadow_area_m2", c.shadow_area_m2, kMetreDigits);
   w.field("highlight_db", c.highlight_db, kScoreDigits);
+  w.field("highlight_above_db", c.highlight_above_db, kScoreDigits);
+  w.field("shadow_below_db", c.shadow_below_db, kScoreDigits);
+  w.field("highlight_area_m2", c.highlight_area_m2, kScoreDigits);
+  w.field("clutter_hits_per_m", c.clutter_hits_per_m, kScoreDigits);
   w.end_object();
   w.key("alignment").begin_object();
   w.field("rows", c.shift_rows).field("cols", c.shift_cols).field("windows", c.windows);

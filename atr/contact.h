@@ -29,7 +29,10 @@
 //   class            the identified class, null without a model
 //   mine_like        the mine / non-mine decision (Section 4.1.2), null without a model
 //   distance, runner_up, runner_up_distance, scores: eq. 10 distances (smaller = closer; chips
-//                    unrelated to a class lie about sqrt(pixels) = 60 away for 60 x 60 chips)
+//                    unrelated to a class lie about sqrt(pixels) = 60 away for 60 x 60 chips);
+//                    the target classes only
+//   clutter_distance only with a model that has a clutter class (the detector's false alarms,
+//                    atr/subspace_classifier.h): its distance
 //   mine_distance, non_mine_distance  the group scores (null for a group without classes)
 //   aspect_sector_deg  the aspect sector of the nearest subspace of the identified class
 //   looks, object, fused_class, fused_mine_like  only when the object was seen before (another
@@ -38,7 +41,12 @@
 //   unknown, open_set_score  only with a model trained with open-set rejection: the distance
 //                    over the identified class's reject distance, and whether it exceeds 1 (an
 //                    object unlike every trained type; "class" then names the nearest one)
-//   detection        the detector's measurements (atr/detector.h)
+//   target_probability  only with a model that has a contact gate (atr/contact_gate.h): the
+//                    calibrated probability that the object is a target, not clutter
+//   detection        the detector's measurements (atr/detector.h): pings, along_extent_m,
+//                    height_m, shadow_area_m2, highlight_db (dB re full scale),
+//                    highlight_above_db and shadow_below_db (against the local background),
+//                    highlight_area_m2, clutter_hits_per_m (the seabed around it)
 //   alignment        the chip window's shift from the detector's centre, in pixels, and the
 //                    windows classified (atr/aligned_classifier.h)
 //   status           present only when the object could not be classified: "no_model", or
@@ -89,6 +97,11 @@ struct Contact {
   // open-set rejection, when the model has it (TrainOptions::reject_quantile)
   std::optional<double> open_set_score;
   bool unknown = false;
+  // the contact gate's probability that it is a target (atr/contact_gate.h), when the model has
+  // a gate
+  std::optional<double> target_probability;
+  // the nearest clutter class's distance, when the model has one (scores hold target classes)
+  std::optional<double> clutter_distance;
   std::string status;  // empty when classified
   // detection
   int pings = 0;
@@ -96,6 +109,10 @@ struct Contact {
   double height_m = 0.0;
   double shadow_area_m2 = 0.0;
   double highlight_db = 0.0;
+  double highlight_above_db = 0.0;  // the highlight's peak above the local background
+  double shadow_below_db = 0.0;     // the shadow's mean depth below it
+  double highlight_area_m2 = 0.0;   // the highlight's extent
+  double clutter_hits_per_m = 0.0;  // the local seabed's ping detections per metre
   // alignment
   int shift_rows = 0, shift_cols = 0;
   int windows = 0;

@@ -32,6 +32,20 @@ double ground_of(double slant_m, double altitude_m) {
 
 }  // namespace
 
+const char* candidate_fate_name(CandidateFate f) {
+  switch (f) {
+    case CandidateFate::kReported:
+      return "reported";
+    case CandidateFate::kSuppressed:
+      return "suppressed";
+    case CandidateFate::kBelowThreshold:
+      return "below_threshold";
+    case CandidateFate::kRejected:
+      return "rejected";
+  }
+  return "?";
+}
+
 void DetectorOptions::validate() const {
   require(min_ground_m >= 0.0 && min_ground_m < 1000.0, "min_ground_m", min_ground_m, "0..1000");
   require(background_block_m > 0.0 && background_block_m <= 100.0, "background_block_m",
@@ -46,8 +60,10 @@ void DetectorOptions::validate() const {
   require(min_pings >= 1, "min_pings", min_pings, ">= 1");
   require(min_along_m >= 0.0 && max_along_m >= min_along_m, "max_along_m", max_along_m,
           ">= min_along_m >= 0");
-  require(max_range_extent_m > 0.0, "max_range_extent_m", max_range_extent_m, "> 0");
   require(min_height_m >= 0.0, "min_height_m", min_height_m, ">= 0");
+  require(max_height_m > min_height_m, "max_height_m", max_height_m, "> min_height_m");
+  require(candidate_min_height_m >= 0.0 && candidate_min_height_m <= min_height_m,
+          "candidate_min_height_m", candidate_min_height_m, "0 .. min_height_m");
   require(min_separation_m >= 0.0, "min_separation_m", min_separation_m, ">= 0");
   require(settle_m >= link_along_m, "settle_m", settle_m, ">= link_along_m");
 }
@@ -59,6 +75,8 @@ Detector::Detector(const DetectorOptions& options) : options_(options) {
   pending_.reserve(kMaxPendingObjects);
   recent_.reserve(kMaxRecentContacts);
   out_.reserve(kMaxPendingObjects);
+  decided_.reserve(2 * kMaxOpenObjects + kMaxPendingObjects);
+  hits_.reserve(kMaxRecentHits);
 }
 
 void Detector::reset() {
@@ -68,6 +86,9 @@ void Detector::reset() {
   recent_.clear();
   recent_next_ = 0;
   out_.clear();
+  decided_.clear();
+  hits_.clear();
+  hits_next_ = 0;
   bins_ = 0;
 }
 
@@ -124,6 +145,7 @@ void Detector::background(std::span<const float> levels, double bin_size_m, int 
 
 std::span<const Detection> Detector::process(const Waterfall& w) {
   out_.clear();
+  decided_.clear();
   if (w.empty()) return out_;
   if (bins_ != w.bins() || bin_size_m_ != w.bin_size_m()) configure(w);
   ++stats_.pings;
@@ -144,6 +166,7 @@ std::span<const Detection> Detector::process(const Waterfall& w) {
 
 std::span<const Detection> Detector::finish(const Waterfall& w) {
   out_.clear();
+  decided_.clear();
   if (w.empty() || bins_ == 0) return out_;
   for (int side = 0; side < 2; ++side)
     close_objects(w, 0.0, side, true);
@@ -177,25 +200,45 @@ void Detector::detect_side(const Waterfall& w, std::uint64_t seq, int side, doub
     while (e + 1 < n && (shadow(e + 1) || (e + 2 < n && shadow(e + 2))))
       ++e;
     if (e - k + 1 >= min_run) {
-      int highlight = -1;
-      float peak = -300.0f;
+      PingHit hit;
+      hit.highlight_bin = -1;
+      hit.peak_db = -300.0f;
       for (int h = std::max(start, k - before); h <= std::min(k + 1, e); ++h) {
         if (level(h) >= B(h) + options_.highlight_above_db &&
             level(h) >= options_.highlight_min_db) {
-          if (highlight < 0) highlight = h;
-          peak = std::max(peak, level(h));
+          if (hit.highlight_bin < 0) hit.highlight_bin = h;
+          if (level(h) > hit.peak_db) {
+            hit.peak_db = level(h);
+            hit.peak_above_db = level(h) - B(h);
+          }
+          ++hit.highlight_bins;
+          hit.highlight_above_sum_db += level(h) - B(h);
         }
       }
-      if (highlight >= 0) add_ping_detection(w, seq, side, along, highlight, k, e, peak);
+      if (hit.highlight_bin >= 0) {
+        hit.shadow_begin = k;
+        hit.shadow_end = e;
+        for (int j = k; j <= e; ++j)
+          hit.shadow_depth_sum_db += B(j) - level(j);
+        add_ping_detection(w, seq, side, along, hit);
+      }
     }
     k = e + 1;
   }
 }
 
 void Detector::add_ping_detection(const Waterfall& w, std::uint64_t seq, int side, double along,
-                                  int highlight_bin, int shadow_begin, int shadow_end,
-                                  float peak_db) {
+                                  const PingHit& hit) {
+  const int highlight_bin = hit.highlight_bin;
+  const int shadow_begin = hit.shadow_begin;
+  const int shadow_end = hit.shadow_end;
   ++stats_.ping_detections;
+  if (hits_.size() < static_cast<std::size_t>(kMaxRecentHits)) {
+    hits_.push_back(Hit{along, side});
+  } else {
+    hits_[hits_next_] = Hit{along, side};
+    hits_next_ = (hits_next_ + 1) % hits_.size();
+  }
   const PingRecord& r = w.record(seq);
   const double b = bin_size_m_;
   const double r0 = w.range_start_m();
@@ -252,7 +295,15 @@ void Detector::add_ping_detection(const Waterfall& w, std::uint64_t seq, int sid
   } else if (height > o->height2) {
     o->height2 = height;
   }
-  o->highlight_db = std::max(o->highlight_db, static_cast<double>(peak_db));
+  if (hit.peak_db > o->highlight_db) {
+    o->highlight_db = hit.peak_db;
+    o->highlight_above_db = hit.peak_above_db;
+  }
+  o->shadow_depth_sum_db += hit.shadow_depth_sum_db;
+  o->shadow_bins += shadow_end - shadow_begin + 1;
+  o->highlight_area_m2 += hit.highlight_bins * b * spacing;
+  o->highlight_above_sum_db += hit.highlight_above_sum_db;
+  o->highlight_bins += hit.highlight_bins;
 }
 
 Detection Detector::to_detection(const Waterfall& w, const Object& o) const {
@@ -284,6 +335,16 @@ Detection Detector::to_detection(const Waterfall& w, const Object& o) const {
   d.height_m = o.pings >= 2 ? o.height2 : o.height1;
   d.shadow_area_m2 = o.area_m2;
   d.highlight_db = o.highlight_db;
+  d.highlight_above_db = o.highlight_above_db;
+  d.shadow_below_db = o.shadow_bins > 0 ? o.shadow_depth_sum_db / o.shadow_bins : 0.0;
+  d.highlight_area_m2 = o.highlight_area_m2;
+  d.highlight_mean_above_db =
+      o.highlight_bins > 0 ? o.highlight_above_sum_db / o.highlight_bins : 0.0;
+  int hits = 0;
+  for (const Hit& h : hits_)
+    hits += h.side == o.side && std::abs(h.along - d.along_m) <= kClutterWindow_m;
+  d.clutter_hits_per_m = hits / (2.0 * kClutterWindow_m);
+  d.score = d.height_m;
   return d;
 }
 
@@ -302,17 +363,25 @@ void Detector::retire(const Waterfall& w, int side, std::size_t index) {
   std::vector<Object>& open = open_[side];
   const Object& o = open[index];
   ++stats_.objects;
-  const Detection d = to_detection(w, o);
-  const double extent_m = d.far_m - d.near_m;
-  const bool pass = o.pings >= options_.min_pings && d.along_extent_m >= options_.min_along_m &&
-                    d.along_extent_m <= options_.max_along_m &&
-                    extent_m <= options_.max_range_extent_m && d.height_m >= options_.min_height_m;
-  if (!pass) {
-    ++stats_.rejected;
-  } else if (pending_.size() < static_cast<std::size_t>(kMaxPendingObjects)) {
-    pending_.push_back(d);
-  } else {
+  Candidate c;
+  c.detection = to_detection(w, o);
+  const Detection& d = c.detection;
+  std::uint8_t failed = 0;
+  if (o.pings < options_.min_pings) failed |= kGatePings;
+  if (d.along_extent_m < options_.min_along_m) failed |= kGateAlongShort;
+  if (d.along_extent_m > options_.max_along_m) failed |= kGateAlongLong;
+  if (d.height_m > options_.max_height_m) failed |= kGateTall;
+  if (d.score < options_.candidate_min_height_m) failed |= kGateFloor;
+  if (failed == 0 && pending_.size() >= static_cast<std::size_t>(kMaxPendingObjects)) {
     ++stats_.overflows;
+    failed |= kGateOverflow;
+  }
+  if (failed != 0) {
+    ++stats_.rejected;
+    c.failed_gates = failed;
+    decided_.push_back(c);
+  } else {
+    pending_.push_back(d);
   }
   open[index] = open.back();
   open.pop_back();
@@ -330,21 +399,31 @@ void Detector::decide(double along_now, bool all) {
       ++i;
       continue;
     }
+    // suppressed only by a candidate of higher score (decided: at least as high), so that the
+    // survivors above any threshold are the contacts of that threshold
     bool suppressed = false;
     for (const Detection& q : recent_)
-      suppressed = suppressed || distance(p, q) < options_.min_separation_m;
+      suppressed = suppressed || (q.score >= p.score && distance(p, q) < options_.min_separation_m);
     for (std::size_t j = 0; j < pending_.size() && !suppressed; ++j) {
       if (j == i) continue;
       const Detection& q = pending_[j];
-      const bool stronger =
-          q.shadow_area_m2 > p.shadow_area_m2 || (q.shadow_area_m2 == p.shadow_area_m2 && j < i);
+      const bool stronger = q.score > p.score || (q.score == p.score && j < i);
       suppressed = stronger && distance(p, q) < options_.min_separation_m;
     }
+    Candidate c;
+    c.detection = p;
     if (suppressed) {
       ++stats_.suppressed;
+      c.fate = CandidateFate::kSuppressed;
     } else {
-      ++stats_.reported;
-      out_.push_back(p);
+      if (p.score >= options_.min_height_m) {
+        ++stats_.reported;
+        c.fate = CandidateFate::kReported;
+        out_.push_back(p);
+      } else {
+        ++stats_.below_threshold;
+        c.fate = CandidateFate::kBelowThreshold;
+      }
       if (recent_.size() < static_cast<std::size_t>(kMaxRecentContacts)) {
         recent_.push_back(p);
       } else {
@@ -352,6 +431,7 @@ void Detector::decide(double along_now, bool all) {
         recent_next_ = (recent_next_ + 1) % recent_.size();
       }
     }
+    decided_.push_back(c);
     pending_.erase(pending_.begin() + static_cast<std::ptrdiff_t>(i));
   }
 }

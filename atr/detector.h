@@ -27,15 +27,27 @@
 //      (highlight to shadow end) overlap.
 //   5. Gates, when an object is complete (the sonar has moved link_along_m past its last ping):
 //      at least min_pings pings; along-track extent in [min_along_m, max_along_m] (ripple and
-//      relief shadows run for metres); slant extent at most max_range_extent_m; height from the
-//      shadow at least min_height_m. Height: a shadow from ground range g0 to g1 behind an object
-//      seen from altitude a means an object of height h = (g1 - g0) · a / g1 (similar
-//      triangles, flat seabed); the object's height is the second largest over its pings (one
-//      ping running into a trough does not make an object).
+//      relief shadows run for metres); height from the shadow at least min_height_m and at most
+//      max_height_m (a longer shadow is relief, not an object: the tallest target is 0.5 m; the
+//      shadow of a 0.5 m object 45 m out from 7.5 m altitude is 3.2 m long, so the height, not
+//      the slant extent, is what bounds an object in range). Height: a shadow from ground range g0
+//      to g1 behind an object seen from altitude a means an object of height h = (g1 - g0) · a / g1
+//      (similar triangles, flat seabed); the object's height is the second largest over its pings
+//      (one ping running into a trough does not make an object).
 //   6. Non-maximum suppression: an object is decided once the sonar is settle_m past it; it is
-//      dropped if an object already reported, or a stronger one still undecided, lies within
-//      min_separation_m (ground distance). Score = shadow area (m²), so one object is one
-//      contact even when its highlight and shadow break into pieces.
+//      dropped if a candidate of higher score (decided before it, or still undecided) lies
+//      within min_separation_m (ground distance), so one object is one contact even when its
+//      highlight and shadow break into pieces.
+//
+// Score and operating threshold. A candidate's score is its height from the shadow (step 5):
+// what the detector looks for is an object proud of the seabed, and the height gate is its
+// operating threshold. Every object that passes the shape gates (pings, extents) with a height
+// of at least candidate_min_height_m (the floor, below min_height_m) goes through the
+// suppression, ranked by score; it is reported when it survives and its score reaches
+// min_height_m. Since a candidate is suppressed only by candidates of higher score, the
+// contacts at any threshold h >= the floor are exactly the survivors with score >= h: the curve
+// of detection against false alarms over the threshold (FROC) comes from one pass over the
+// candidates (candidates(), with their fate), not one run per threshold.
 //
 // Along-track positions. A ping's strip does not lie under the sonar when the vehicle pitches:
 // the beam plane (perpendicular to the body's x axis) tilts with it, and a seabed point at depth
@@ -70,14 +82,18 @@ struct DetectorOptions {
   double shadow_below_db = 20.0;     // shadow: L <= B - this
   double shadow_min_m = 0.15;        // shortest shadow run (slant)
   double highlight_before_m = 1.2;   // longest highlight-to-shadow distance (slant)
-  double link_along_m = 0.45;        // largest along-track gap inside one object
+  double link_along_m = 0.7;         // largest along-track gap inside one object
   int min_pings = 2;
   double min_along_m = 0.1;
   double max_along_m = 2.5;
-  double max_range_extent_m = 3.0;
-  double min_height_m = 0.18;     // mine-like targets are 0.3-0.5 m tall
-  double min_separation_m = 1.5;  // between two contacts (ground)
-  double settle_m = 2.5;          // decide an object once the sonar is this far past it
+  double max_height_m = 1.5;  // taller shadows are relief
+  // the operating threshold; the targets are 0.25-0.5 m tall, but a shadow broken by speckle or
+  // cut by the relief measures less: 0.14 m detects 101 of the 105 targets of the five survey
+  // scenarios, 0.18 m 99 (docs/autonomy.md, the detector's FROC)
+  double min_height_m = 0.14;
+  double candidate_min_height_m = 0.10;  // the floor of the candidates kept (<= min_height_m)
+  double min_separation_m = 1.5;         // between two contacts (ground)
+  double settle_m = 2.5;                 // decide an object once the sonar is this far past it
 
   // Throws std::invalid_argument naming the first value out of range.
   void validate() const;
@@ -86,6 +102,11 @@ struct DetectorOptions {
 inline constexpr int kMaxOpenObjects = 64;      // per side
 inline constexpr int kMaxPendingObjects = 64;   // gated, waiting for their decision
 inline constexpr int kMaxRecentContacts = 256;  // reported, remembered for suppression
+// ping detections remembered for the local clutter density (a rocky seabed gives about 20 per
+// ping and side: 20 m of track)
+inline constexpr int kMaxRecentHits = 8192;
+// the clutter density counts the ping detections within this along-track distance of an object
+inline constexpr double kClutterWindow_m = 10.0;
 
 // One object, as reported.
 struct Detection {
@@ -99,8 +120,45 @@ struct Detection {
   double ground_m = 0.0;             // ground range of that point from the centre ping's altitude
   double near_m = 0.0, far_m = 0.0;  // slant extent: first highlight bin to last shadow bin
   double height_m = 0.0;             // from the shadow
-  double shadow_area_m2 = 0.0;       // slant length x ping spacing, summed: the score
+  double shadow_area_m2 = 0.0;       // slant length x ping spacing, summed
   double highlight_db = -300.0;      // strongest highlight bin
+  // contrasts with the local background B (step 1): the strongest highlight bin's level above
+  // its B, and the shadow bins' mean depth below theirs (dB), over the object's pings
+  double highlight_above_db = 0.0;
+  double shadow_below_db = 0.0;
+  // the highlight's extent: its bins (L >= B + highlight_above_db) over the object's pings,
+  // slant length x ping spacing summed (m²), and their mean level above B (dB)
+  double highlight_area_m2 = 0.0;
+  double highlight_mean_above_db = 0.0;
+  // the seabed around it: ping detections (of any object) per metre of track on its side within
+  // kClutterWindow_m along track (a flat seabed gives few, a rocky or cluttered one many): the
+  // object-level counterpart of a CFAR detector's local statistics
+  double clutter_hits_per_m = 0.0;
+  double score = 0.0;  // the detection statistic: height_m
+};
+
+// What became of a complete object (Candidate::fate).
+enum class CandidateFate : std::uint8_t {
+  kReported,        // a contact
+  kSuppressed,      // a candidate of higher score within min_separation_m
+  kBelowThreshold,  // survived the suppression, score under min_height_m
+  kRejected,        // failed a gate (Candidate::failed_gates)
+};
+const char* candidate_fate_name(CandidateFate f);
+
+// The gates an object failed (bits of Candidate::failed_gates).
+inline constexpr std::uint8_t kGatePings = 1;       // fewer than min_pings
+inline constexpr std::uint8_t kGateAlongShort = 2;  // along-track extent under min_along_m
+inline constexpr std::uint8_t kGateAlongLong = 4;   // over max_along_m
+inline constexpr std::uint8_t kGateTall = 8;        // height over max_height_m
+inline constexpr std::uint8_t kGateFloor = 16;      // height under candidate_min_height_m
+inline constexpr std::uint8_t kGateOverflow = 32;   // the pending pool was full
+
+// One complete object and its fate.
+struct Candidate {
+  Detection detection;
+  CandidateFate fate = CandidateFate::kRejected;
+  std::uint8_t failed_gates = 0;
 };
 
 struct DetectorStats {
@@ -110,6 +168,7 @@ struct DetectorStats {
   std::uint64_t objects = 0;     // complete objects
   std::uint64_t rejected = 0;    // by the gates
   std::uint64_t suppressed = 0;  // by non-maximum suppression
+  std::uint64_t below_threshold = 0;
   std::uint64_t reported = 0;
   std::uint64_t overflows = 0;  // pool full: an object closed early
 };
@@ -125,6 +184,9 @@ class Detector {
   std::span<const Detection> finish(const Waterfall& w);
   // Forgets everything (the waterfall was reset).
   void reset();
+  // Every object whose fate was decided in the last process() or finish() call (the reported
+  // ones among them), valid until the next call.
+  std::span<const Candidate> candidates() const { return decided_; }
 
   const DetectorOptions& options() const { return options_; }
   const DetectorStats& stats() const { return stats_; }
@@ -147,12 +209,27 @@ class Detector {
     double area_m2 = 0.0;
     double height1 = 0.0, height2 = 0.0;  // largest and second largest
     double highlight_db = -300.0;
+    double highlight_above_db = 0.0;
+    double shadow_depth_sum_db = 0.0;  // sum over shadow bins of B - L
+    int shadow_bins = 0;
+    double highlight_area_m2 = 0.0;
+    double highlight_above_sum_db = 0.0;  // sum over highlight bins of L - B
+    int highlight_bins = 0;
   };
 
   void configure(const Waterfall& w);
   void detect_side(const Waterfall& w, std::uint64_t seq, int side, double footprint_along);
+  // One ping's highlight and shadow: its bins, the highlight's peak level and its height above
+  // the background, the shadow's summed depth below it.
+  struct PingHit {
+    int highlight_bin = 0, shadow_begin = 0, shadow_end = 0;
+    float peak_db = 0.0f, peak_above_db = 0.0f;
+    double shadow_depth_sum_db = 0.0;
+    int highlight_bins = 0;
+    double highlight_above_sum_db = 0.0;
+  };
   void add_ping_detection(const Waterfall& w, std::uint64_t seq, int side, double along,
-                          int highlight_bin, int shadow_begin, int shadow_end, float peak_db);
+                          const PingHit& hit);
   void close_objects(const Waterfall& w, double along_now, int side, bool all);
   void retire(const Waterfall& w, int side, std::size_t index);  // gates, then removes
   void decide(double along_now, bool all);
@@ -168,9 +245,16 @@ class Detector {
   std::vector<float> background_;
   std::vector<Object> open_[2];
   std::vector<Detection> pending_;
-  std::vector<Detection> recent_;  // ring of reported contacts
+  std::vector<Detection> recent_;  // ring of candidates that survived the suppression
   std::size_t recent_next_ = 0;
   std::vector<Detection> out_;
+  std::vector<Candidate> decided_;
+  struct Hit {
+    double along = 0.0;
+    int side = 0;
+  };
+  std::vector<Hit> hits_;  // ring of recent ping detections (clutter density)
+  std::size_t hits_next_ = 0;
 };
 
 }  // namespace sonarloop::atr

@@ -38,7 +38,14 @@ const FusedObject& LookFusion::add(std::uint64_t contact_id, double north_m, dou
   o.north_m += (north_m - o.north_m) / (o.looks + 1);
   o.east_m += (east_m - o.east_m) / (o.looks + 1);
   ++o.looks;
-  o.class_index = fused_decision(o.fused);
+  // the fused class among the target classes (a clutter class is never a contact's class)
+  int best_class = -1;
+  for (std::size_t i = 0; i < o.fused.size(); ++i) {
+    if (m.classes[i].clutter) continue;
+    if (best_class < 0 || o.fused[i] < o.fused[static_cast<std::size_t>(best_class)])
+      best_class = static_cast<int>(i);
+  }
+  o.class_index = best_class >= 0 ? best_class : fused_decision(o.fused);
   return o;
 }
 

@@ -7,6 +7,8 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "atr/contact_gate.h"
+
 namespace sonarloop::atr {
 namespace {
 
@@ -17,8 +19,9 @@ constexpr std::uint32_t kMaxP = 4096;
 constexpr std::uint32_t kMaxAspectSectors = 360;
 constexpr std::uint32_t kMaxClasses = 65535;
 constexpr std::size_t kMaxNameBytes = 255;
-// class flags (version 3)
+// class flags (version 3; bit 1 from version 4)
 constexpr std::uint8_t kHeightKnown = 1;
+constexpr std::uint8_t kClutterClass = 2;
 
 class Writer {
  public:
@@ -111,7 +114,8 @@ void write_class(Writer& w, const ClassModel& c, std::size_t n) {
   w.u16(static_cast<std::uint16_t>(c.name.size()));
   w.bytes(c.name.data(), c.name.size());
   w.u8(c.mine_like ? 1 : 0);
-  w.u8(c.height_m ? kHeightKnown : 0);  // version 3 flags
+  w.u8(static_cast<std::uint8_t>((c.height_m ? kHeightKnown : 0) |
+                                 (c.clutter ? kClutterClass : 0)));  // version 3 flags
   w.u32(static_cast<std::uint32_t>(c.subspaces.size()));
   w.f32(c.reject_distance);  // version 2
   w.f32(c.typical_distance);
@@ -146,9 +150,12 @@ ClassModel read_class(Reader& r, const Model& m, int version, const char* kind, 
   c.mine_like = mine == 1;
   // a reserved byte before version 3 (ignored, as those versions did)
   const std::uint8_t flags = r.u8(version >= 3 ? "class flags" : "reserved byte");
-  if (version >= 3 && flags > kHeightKnown) {
-    r.fail(label + " '" + c.name + "': flags byte " + std::to_string(flags) + " (0 or 1)");
+  const std::uint8_t allowed = version >= 4 ? kHeightKnown | kClutterClass : kHeightKnown;
+  if (version >= 3 && (flags & ~allowed) != 0) {
+    r.fail(label + " '" + c.name + "': flags byte " + std::to_string(flags) + " (allowed bits " +
+           std::to_string(allowed) + ")");
   }
+  c.clutter = version >= 4 && (flags & kClutterClass) != 0;
   const std::uint32_t count = r.u32("subspace count");
   if (count == 0 || count > static_cast<std::uint32_t>(m.aspect_sectors)) {
     r.fail(label + " '" + c.name + "': subspace count " + std::to_string(count) +
@@ -197,6 +204,54 @@ ClassModel read_class(Reader& r, const Model& m, int version, const char* kind, 
   return c;
 }
 
+// version 4: the gates, after the groups
+void write_gate(Writer& w, const LogisticGate& g) {
+  w.u8(static_cast<std::uint8_t>(g.stage));
+  w.u8(static_cast<std::uint8_t>(g.form));
+  w.u8(0);
+  w.u8(0);
+  w.u32(static_cast<std::uint32_t>(g.mean.size()));
+  w.f64(g.threshold);
+  w.f64(g.bias);
+  for (const double v : g.mean)
+    w.f64(v);
+  for (const double v : g.scale)
+    w.f64(v);
+  for (const double v : g.weights)
+    w.f64(v);
+}
+
+LogisticGate read_gate(Reader& r, std::uint32_t index) {
+  LogisticGate g;
+  const std::uint8_t stage = r.u8("gate stage");
+  if (stage > 1)
+    r.fail("gate " + std::to_string(index) + ": stage " + std::to_string(stage) +
+           " (0 detection or 1 classification)");
+  g.stage = static_cast<GateStage>(stage);
+  const std::uint8_t form = r.u8("gate form");
+  if (form > 1) {
+    r.fail("gate " + std::to_string(index) + ": form " + std::to_string(form) +
+           " (0 linear or 1 quadratic)");
+  }
+  g.form = static_cast<GateForm>(form);
+  r.u8("reserved byte");
+  r.u8("reserved byte");
+  const std::uint32_t n = r.u32("gate feature count");
+  if (n != gate_feature_count(g.stage)) {
+    r.fail("gate " + std::to_string(index) + " (" + gate_stage_name(g.stage) +
+           "): " + std::to_string(n) + " features (this build's stage has " +
+           std::to_string(gate_feature_count(g.stage)) + ")");
+  }
+  g.threshold = r.f64("gate threshold");
+  g.bias = r.f64("gate bias");
+  for (auto* v : {&g.mean, &g.scale, &g.weights}) {
+    v->resize(v == &g.weights ? gate_term_count(n, g.form) : n);
+    for (double& x : *v)
+      x = r.f64("gate parameter");
+  }
+  return g;
+}
+
 }  // namespace
 
 std::uint32_t crc32(std::span<const std::uint8_t> bytes) {
@@ -241,6 +296,11 @@ std::vector<std::uint8_t> encode_model(const Model& m) {
     write_class(w, c, m.feature_count());
   for (const auto& g : m.groups)
     write_class(w, g, m.feature_count());
+  // version 4: the gates
+  w.u32(static_cast<std::uint32_t>(m.detection_gate.has_value()) +
+        static_cast<std::uint32_t>(m.classification_gate.has_value()));
+  if (m.detection_gate) write_gate(w, *m.detection_gate);
+  if (m.classification_gate) write_gate(w, *m.classification_gate);
   w.u32(crc32(w.data()));
   return std::move(w.data());
 }
@@ -311,6 +371,16 @@ Model decode_model(std::span<const std::uint8_t> bytes, const std::string& name,
       m.classes.push_back(read_class(r, m, version, "class", c));
     for (std::uint32_t g = 0; g < groups; ++g)
       m.groups.push_back(read_class(r, m, version, "group", g));
+    if (version >= 4) {
+      const std::uint32_t gates = r.u32("gate count");
+      if (gates > 2) r.fail("gate count " + std::to_string(gates) + " (0 to 2)");
+      for (std::uint32_t i = 0; i < gates; ++i) {
+        LogisticGate g = read_gate(r, i);
+        auto& slot = g.stage == GateStage::kDetection ? m.detection_gate : m.classification_gate;
+        if (slot) r.fail("two gates of the " + std::string(gate_stage_name(g.stage)) + " stage");
+        slot = std::move(g);
+      }
+    }
     r.need(4, "the checksum trailer");
     if (r.left() > 4) {
       r.fail(std::to_string(r.left() - 4) + " unexpected bytes after the last record");

@@ -1,16 +1,17 @@
 #pragma once
 // The classifier's model file (.slpca): a versioned little-endian binary format.
 //
-// Version 3 layout (all integers unsigned little-endian, floats IEEE 754 little-endian). Version
-// 2 is the same without the class height (its flags byte is 0); version 1 also lacks the
-// pre-processing record (read as no pre-processing) and the reject and typical distances. Older
-// versions are read with every class's height unknown (the tools then fill the heights of the
-// simulator's target classes, tools/class_metadata.h); mine_like was stored by every version.
+// Version 4 layout (all integers unsigned little-endian, floats IEEE 754 little-endian). Version
+// 3 is the same without the clutter flag (flags bit 1) and the gates; version 2 without the class
+// height (its flags byte is 0); version 1 also lacks the pre-processing record (read as no
+// pre-processing) and the reject and typical distances. Older versions are read with every class's
+// height unknown (the tools then fill the heights of the simulator's target classes,
+// tools/class_metadata.h); mine_like was stored by every version.
 //
 //   header, 36 bytes
 //     0   u8[5]  magic "SLPCA"
 //     5   u8     0 (reserved)
-//     6   u16    format version (3)
+//     6   u16    format version (4)
 //     8   u32    chip width (pixels)
 //    12   u32    chip height (pixels)                      n = width * height
 //    16   u32    p, the requested subspace dimension
@@ -27,7 +28,8 @@
 //   C class records, then G group records, each:
 //     u16    name length L (1 to 255), then L bytes of name (UTF-8, no terminator)
 //     u8     mine_like (0 or 1)
-//     u8     flags (version 3; 0 before): bit 0 set when the class height is known
+//     u8     flags (version 3; 0 before): bit 0 set when the class height is known; bit 1
+//            (version 4) set for a clutter class (atr/subspace_classifier.h ClassMetadata)
 //     u32    subspace count S (>= 1)
 //     f32    reject distance (version 2): open-set threshold, +infinity for none
 //     f32    typical distance (version 2): median cross-validated distance, 0 for none
@@ -41,6 +43,14 @@
 //       f32[n]   mean image mu, row-major pixel order (eq. 8); n is the pre-processed
 //                (cropped) chip's pixel count
 //       f32[r*n] basis U, column by column: the n values of eigenvector 0, then 1, ...
+//   gates (version 4; atr/contact_gate.h)
+//     u32    gate count (0 to 2), then each gate:
+//       u8     stage (0 detection, 1 classification; at most one of each)
+//       u8     form (0 linear, 1 quadratic), u8[2] 0
+//       u32    feature count n (the stage's: 11 detection, 15 classification)
+//       f64    threshold (a candidate passes when p >= it), f64 bias
+//       f64[n] feature means, f64[n] feature scales, f64[T] weights (T = n linear, n + n(n+1)/2
+//              quadratic: atr/logistic_gate.h)
 //   trailer
 //     u32    CRC-32 (IEEE 802.3 polynomial, as zlib's crc32) of every preceding byte
 //
@@ -57,7 +67,7 @@
 
 namespace sonarloop::atr {
 
-inline constexpr std::uint16_t kModelFileVersion = 3;
+inline constexpr std::uint16_t kModelFileVersion = 4;
 inline constexpr char kModelFileMagic[5] = {'S', 'L', 'P', 'C', 'A'};
 
 // The file's bytes for a (valid) model. Throws std::runtime_error if validate_model() fails.

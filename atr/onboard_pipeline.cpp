@@ -19,6 +19,7 @@ OnboardPipeline::OnboardPipeline(std::optional<Model> model, const OnboardOption
                 [this](const xtf::XtfFileHeader& h, const xtf::XtfPing& p) { on_ping(h, p); }),
       waterfall_(options.waterfall_pings, options.frame_origin),
       detector_(options.detector) {
+  features_.reserve(gate_feature_count(GateStage::kClassification));
   if (!(options.position_window_m > 0.0)) {
     throw std::invalid_argument("position window must be > 0 m");
   }
@@ -46,8 +47,8 @@ void OnboardPipeline::flush() {
 
 void OnboardPipeline::finish() {
   receiver_.flush();
-  for (const Detection& d : detector_.finish(waterfall_))
-    report(d);
+  detector_.finish(waterfall_);
+  decided();
 }
 
 OnboardStats OnboardPipeline::stats() const {
@@ -63,8 +64,30 @@ void OnboardPipeline::on_ping(const xtf::XtfFileHeader& header, const xtf::XtfPi
   const AddResult added = waterfall_.add(header, ping);
   if (added == AddResult::kUnusable) return;
   if (added == AddResult::kReset) detector_.reset();
-  for (const Detection& d : detector_.process(waterfall_))
-    report(d);
+  detector_.process(waterfall_);
+  decided();
+}
+
+void OnboardPipeline::decided() {
+  for (const Candidate& c : detector_.candidates()) {
+    const bool detected = c.fate == CandidateFate::kReported;
+    const bool assessed =
+        detected || (options_.classify_candidates && c.fate == CandidateFate::kBelowThreshold);
+    if (!detected && !candidate_sink_) continue;
+    CandidateReport& r = candidate_;
+    r.candidate = c;
+    r.p_detection = r.p_classification = std::numeric_limits<double>::quiet_NaN();
+    r.classified = nullptr;
+    r.reported = false;
+    r.contact = assess(c.detection, assessed, &r);
+    if (detected && r.passed) report(r.contact);
+    r.reported = detected && r.passed;
+    if (detected && !r.passed) ++(r.contact.status == "clutter" ? stats_.clutter : stats_.gated);
+    if (candidate_sink_) {
+      r.gate_features = features_;
+      candidate_sink_(r);
+    }
+  }
 }
 
 void OnboardPipeline::locate(const Detection& d, const ChipCentre& centre, double object_height_m,
@@ -121,61 +144,104 @@ void OnboardPipeline::locate(const Detection& d, const ChipCentre& centre, doubl
   c.east_m = ne.y();
 }
 
-void OnboardPipeline::report(const Detection& d) {
+Contact OnboardPipeline::assess(const Detection& d, bool classify, CandidateReport* report) {
   Contact c;
-  c.id = ++stats_.contacts;
   c.side = d.side;
   c.pings = d.pings;
   c.along_extent_m = d.along_extent_m;
   c.height_m = d.height_m;
   c.shadow_area_m2 = d.shadow_area_m2;
   c.highlight_db = d.highlight_db;
+  c.highlight_above_db = d.highlight_above_db;
+  c.shadow_below_db = d.shadow_below_db;
+  c.highlight_area_m2 = d.highlight_area_m2;
+  c.clutter_hits_per_m = d.clutter_hits_per_m;
   ChipCentre centre{d.side, d.along_m, d.slant_m};
   double height = d.height_m;
-  const Classification* classified = nullptr;  // the aligned classifier's, valid in this call
+  report->passed = false;
+  detection_features(d, features_);
 
+  const Model* m = classifier_ ? &classifier_->model() : nullptr;
+  // the detection gate, before the chip is cut
+  if (m && m->detection_gate) {
+    report->p_detection = m->detection_gate->probability(features_);
+    c.target_probability = report->p_detection;
+  }
+  const bool detection_passed =
+      !(m && m->detection_gate) || report->p_detection >= m->detection_gate->threshold;
   if (!classifier_) {
     c.status = "no_model";
-    ++stats_.unclassified;
+    report->passed = true;  // reported unclassified
+  } else if (!classify) {
+    c.status = "not_classified";
+  } else if (!detection_passed) {
+    c.status = "gated";
   } else {
     const auto t0 = std::chrono::steady_clock::now();
     const CutStatus cut = cutter_->cut(waterfall_, centre);
     if (cut != CutStatus::kOk) {
       c.status = cut_status_name(cut);
-      ++stats_.unclassified;
+      report->passed = true;  // reported unclassified, as without a gate
     } else {
       const AlignedClassification& a = aligned_->classify(*cutter_);
       stats_.windows += static_cast<std::uint64_t>(a.windows);
       c.windows = a.windows;
       if (a.result.class_index < 0) {
         c.status = chip_status_name(a.check.status);
-        ++stats_.unclassified;
+        report->passed = true;
       } else {
-        ++stats_.classified;
-        const Model& m = classifier_->model();
-        const Classification& r = a.result;
-        classified = &r;
-        const ClassModel& cls = m.classes[static_cast<std::size_t>(r.class_index)];
-        c.class_name = cls.name;
-        c.mine_like = r.mine_like;
-        c.distance = r.distance;
-        if (r.runner_up >= 0) c.runner_up = m.classes[static_cast<std::size_t>(r.runner_up)].name;
-        c.runner_up_distance = r.runner_up_distance;
-        for (std::size_t i = 0; i < m.classes.size(); ++i)
-          c.scores.emplace_back(m.classes[i].name, r.class_distance[i]);
-        c.mine_distance = r.mine_distance;
-        c.non_mine_distance = r.non_mine_distance;
-        const Subspace& sub = cls.subspaces[static_cast<std::size_t>(r.subspace_index)];
-        c.aspect_min_deg = sub.aspect_min_deg;
-        c.aspect_max_deg = sub.aspect_max_deg;
-        if (std::isfinite(cls.reject_distance)) {
-          c.open_set_score = r.open_set_score;
-          c.unknown = r.unknown;
+        const Classification& nearest = a.result;
+        const bool clutter = m->classes[static_cast<std::size_t>(nearest.class_index)].clutter;
+        // the classification gate decides; without one, the nearest class (clutter: not a target)
+        classification_features(d, nearest, *m, features_);
+        if (m->classification_gate) {
+          report->p_classification = m->classification_gate->probability(features_);
+          c.target_probability = report->p_classification;
+          report->passed = report->p_classification >= m->classification_gate->threshold;
+        } else {
+          report->passed = !clutter;
+        }
+        if (clutter && !report->passed) {
+          c.status = "clutter";
+          c.class_name = m->classes[static_cast<std::size_t>(nearest.class_index)].name;
+          c.distance = nearest.distance;
+        } else if (!report->passed) {
+          c.status = "gated";
+        }
+        // what is reported: the nearest target class
+        classified_ = without_clutter(nearest, *m);
+        const Classification& r = classified_;
+        if (r.class_index >= 0 && (report->passed || !clutter)) {
+          report->classified = &classified_;
+          const ClassModel& cls = m->classes[static_cast<std::size_t>(r.class_index)];
+          c.class_name = cls.name;
+          c.mine_like = r.mine_like;
+          c.distance = r.distance;
+          if (r.runner_up >= 0)
+            c.runner_up = m->classes[static_cast<std::size_t>(r.runner_up)].name;
+          c.runner_up_distance = r.runner_up_distance;
+          c.mine_distance = r.mine_distance;
+          c.non_mine_distance = r.non_mine_distance;
+          const Subspace& sub = cls.subspaces[static_cast<std::size_t>(r.subspace_index)];
+          c.aspect_min_deg = sub.aspect_min_deg;
+          c.aspect_max_deg = sub.aspect_max_deg;
+          if (std::isfinite(cls.reject_distance)) {
+            c.open_set_score = r.open_set_score;
+            c.unknown = r.unknown;
+          }
+          if (cls.height_m) height = *cls.height_m;  // unknown: the shadow height
+        }
+        for (std::size_t i = 0; i < m->classes.size(); ++i) {
+          const double v = nearest.class_distance[i];
+          if (!m->classes[i].clutter) {
+            c.scores.emplace_back(m->classes[i].name, v);
+          } else if (!c.clutter_distance || v < *c.clutter_distance) {
+            c.clutter_distance = v;
+          }
         }
         c.shift_rows = a.dr;
         c.shift_cols = a.dc;
         centre = cutter_->shifted(centre, a.dr, a.dc);
-        if (cls.height_m) height = *cls.height_m;  // unknown: the shadow height
       }
     }
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -183,6 +249,17 @@ void OnboardPipeline::report(const Detection& d) {
     stats_.classify_max_s = std::max(stats_.classify_max_s, s);
   }
   locate(d, centre, height, c);
+  return c;
+}
+
+void OnboardPipeline::report(Contact& c) {
+  c.id = ++stats_.contacts;
+  const Classification* classified = c.class_name.empty() ? nullptr : &classified_;
+  if (classified) {
+    ++stats_.classified;
+  } else {
+    ++stats_.unclassified;
+  }
   if (looks_ && classified) {
     const Model& m = classifier_->model();
     const FusedObject& o = looks_->add(c.id, c.north_m, c.east_m, m, *classified);

@@ -127,6 +127,10 @@ void validate_model(const Model& m) {
   if (m.classes.empty()) throw std::runtime_error("model has no class");
   for (std::size_t i = 0; i < m.classes.size(); ++i) {
     validate_class(m.classes[i], m, "class " + std::to_string(i));
+    if (m.classes[i].clutter && m.classes[i].mine_like) {
+      throw std::runtime_error("model class '" + m.classes[i].name +
+                               "' is both clutter and mine-like");
+    }
     for (std::size_t j = 0; j < i; ++j) {
       if (m.classes[j].name == m.classes[i].name) {
         throw std::runtime_error("model has two classes named '" + m.classes[i].name + "'");
@@ -139,8 +143,23 @@ void validate_model(const Model& m) {
       throw std::runtime_error(
           "model groups must be exactly 'mine' (mine-like) then 'non_mine' (not mine-like)");
     }
+    if (m.groups[0].clutter || m.groups[1].clutter) {
+      throw std::runtime_error("model groups cannot be clutter");
+    }
     for (const auto& g : m.groups)
       validate_class(g, m, "group");
+  }
+  if (m.detection_gate) {
+    if (m.detection_gate->stage != GateStage::kDetection) {
+      throw std::runtime_error("model detection gate is of the classification stage");
+    }
+    validate_gate(*m.detection_gate);
+  }
+  if (m.classification_gate) {
+    if (m.classification_gate->stage != GateStage::kClassification) {
+      throw std::runtime_error("model classification gate is of the detection stage");
+    }
+    validate_gate(*m.classification_gate);
   }
 }
 
@@ -247,6 +266,7 @@ ChipCheck Classifier::classify(ChipView chip) {
     r.mine_distance = kInfinity;
     r.non_mine_distance = kInfinity;
     for (std::size_t i = 0; i < model_.classes.size(); ++i) {
+      if (model_.classes[i].clutter) continue;
       float& g = model_.classes[i].mine_like ? r.mine_distance : r.non_mine_distance;
       g = std::min(g, r.class_distance[i]);
     }
@@ -254,6 +274,37 @@ ChipCheck Classifier::classify(ChipView chip) {
     r.mine_like = r.mine_like_by_identity;
   }
   return check;
+}
+
+Classification without_clutter(const Classification& r, const Model& m) {
+  if (r.class_index < 0 || !m.classes[static_cast<std::size_t>(r.class_index)].clutter) return r;
+  Classification t = r;
+  int best = -1, second = -1;
+  for (std::size_t i = 0; i < m.classes.size(); ++i) {
+    if (m.classes[i].clutter) continue;
+    const int k = static_cast<int>(i);
+    if (best < 0 || r.class_distance[i] < r.class_distance[static_cast<std::size_t>(best)]) {
+      second = best;
+      best = k;
+    } else if (second < 0 ||
+               r.class_distance[i] < r.class_distance[static_cast<std::size_t>(second)]) {
+      second = k;
+    }
+  }
+  t.class_index = best;
+  if (best < 0) return t;
+  const auto b = static_cast<std::size_t>(best);
+  t.distance = r.class_distance[b];
+  t.subspace_index = r.class_subspace[b];
+  t.runner_up = second;
+  t.runner_up_distance = second >= 0 ? r.class_distance[static_cast<std::size_t>(second)]
+                                     : std::numeric_limits<float>::infinity();
+  const float tau = m.classes[b].reject_distance;
+  t.open_set_score = std::isfinite(tau) ? t.distance / tau : 0.0f;
+  t.unknown = t.open_set_score > 1.0f;
+  t.mine_like_by_identity = m.classes[b].mine_like;
+  if (!t.by_group_subspaces) t.mine_like = t.mine_like_by_identity;
+  return t;
 }
 
 }  // namespace sonarloop::atr

@@ -42,8 +42,10 @@
 // identified class exceeds it is reported unknown: an object of a type the model was not
 // trained on should lie far from every subspace instead of being forced into the nearest one.
 //
-// Class metadata. Each class carries a mine_like flag and, when known, the height of its
-// objects above the seabed (used onboard to place a contact, atr/onboard_pipeline.h). Both come
+// Class metadata. Each class carries a mine_like flag, a clutter flag (a class of the detector's
+// false alarms rather than of a target: onboard, what is identified as it is not reported) and,
+// when known, the height of its objects above the seabed (used onboard to place a contact,
+// atr/onboard_pipeline.h). Both come
 // from TrainOptions::class_metadata and are stored in the model file; a class it does not list
 // is not mine-like and of unknown height. The classifier knows nothing of the simulator's
 // target types: `sonarloop train` fills the metadata of simulated target classes (manta, ...)
@@ -52,7 +54,8 @@
 // Mine / non-mine (Section 4.1.2). On top of
 // identification the classifier reports a group score for each group, the smallest class
 // distance within it; the decision is the group of smaller score, which is the group of the
-// identified class. Optionally (TrainOptions::group_subspaces) the model also holds dedicated
+// identified class. Clutter classes belong to neither group. Optionally
+// (TrainOptions::group_subspaces) the model also holds dedicated
 // "mine" and "non_mine" subspaces, trained on all the chips of each group pooled (with the same
 // aspect sectors); the group scores and the decision then come from those, and the group of the
 // identified class is still reported as mine_like_by_identity.
@@ -78,6 +81,7 @@
 
 #include "atr/chip.h"
 #include "atr/chip_preprocess.h"
+#include "atr/logistic_gate.h"
 
 namespace sonarloop::atr {
 
@@ -90,6 +94,9 @@ inline constexpr double kRelativeEigenvalueFloor = 1e-10;
 // Names of the dedicated group subspaces (Model::groups).
 inline constexpr std::string_view kMineGroupName = "mine";
 inline constexpr std::string_view kNonMineGroupName = "non_mine";
+// The name `sonarloop train` gives the clutter flag by default (ClassMetadata::clutter), and the
+// label of the false-alarm chips of training surveys (mission/survey_chips.h).
+inline constexpr std::string_view kClutterClassName = "clutter";
 
 // One eigen-subspace: a mean image and an orthonormal basis.
 struct Subspace {
@@ -115,12 +122,17 @@ struct ClassMetadata {
   // height of the class's objects above the seabed (m); unset: unknown, and the onboard
   // pipeline places the contact with the detector's shadow height instead
   std::optional<double> height_m;
+  // a class of the detector's false alarms (rocks, relief: hard negatives from training
+  // surveys, mission/survey_training.h), not of a target: the onboard consumer does not report
+  // an object identified as it, and it takes no part in the mine / non-mine group scores
+  bool clutter = false;
 };
 
 // One target class (or one mine / non-mine group).
 struct ClassModel {
   std::string name;
   bool mine_like = false;
+  bool clutter = false;             // see ClassMetadata; never mine-like
   std::optional<double> height_m;   // see ClassMetadata; unset for groups
   std::vector<Subspace> subspaces;  // one per aspect sector that had training chips
   // Open-set rejection: a chip identified as this class whose distance exceeds this is reported
@@ -143,6 +155,10 @@ struct Model {
   ChipPreprocess preprocess;
   std::vector<ClassModel> classes;  // identification classes, in training order (sorted names)
   std::vector<ClassModel> groups;   // empty, or {"mine", "non_mine"} (Section 4.1.2)
+  // the onboard consumer's contact gates (atr/contact_gate.h), when trained: on the detector's
+  // features before a chip is classified, and on those and the classification after
+  std::optional<LogisticGate> detection_gate;
+  std::optional<LogisticGate> classification_gate;
 
   std::size_t pixel_count() const {
     return static_cast<std::size_t>(chip_width) * static_cast<std::size_t>(chip_height);
@@ -161,7 +177,8 @@ struct Model {
 };
 
 // Throws std::runtime_error naming the first inconsistency: sizes, counts, ranks, non-finite
-// values, a basis that is not orthonormal (to 1e-3), duplicate or empty names, bad groups.
+// values, a basis that is not orthonormal (to 1e-3), duplicate or empty names, bad groups, a gate
+// of the wrong stage or size (validate_gate).
 void validate_model(const Model& m);
 
 // The aspect sector (0 .. sectors-1) of an aspect angle: [s * 360/N, (s + 1) * 360/N) after
@@ -254,6 +271,13 @@ struct Classification {
   float open_set_score = 0.0f;
   bool unknown = false;
 };
+
+// The classification `r` by `m` with its clutter classes left out: the nearest target class
+// identified (its distance, subspace, runner-up among the target classes, mine-likeness); `r`
+// itself when it identified a target class or `m` has no clutter class; class_index -1 when
+// `m` has no target class. For reporting a detection that a contact gate passed although its
+// nearest class is clutter.
+Classification without_clutter(const Classification& r, const Model& m);
 
 // Classifies chips with a fixed model. Not thread-safe (one per thread); classify() does not
 // allocate.

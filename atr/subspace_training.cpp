@@ -236,6 +236,7 @@ ClassModel fit_class(const Prepared& pr, const std::vector<std::size_t>& cols,
   ClassModel cm;
   cm.name = name;
   cm.mine_like = meta.mine_like;
+  cm.clutter = meta.clutter;
   cm.height_m = meta.height_m;
   const double width_deg = 360.0 / opt.aspect_sectors;
   for (int s = 0; s < opt.aspect_sectors; ++s) {
@@ -307,6 +308,9 @@ void check_options(const TrainOptions& opt) {
                              " (allowed 1 to 360)");
   }
   for (const auto& [name, meta] : opt.class_metadata) {
+    if (meta.clutter && meta.mine_like) {
+      throw std::runtime_error("class '" + name + "' is both clutter and mine-like");
+    }
     if (meta.height_m && !valid_class_height(*meta.height_m)) {
       throw std::runtime_error("class '" + name + "': height " + std::to_string(*meta.height_m) +
                                " m (allowed 0 to " + std::to_string(kMaxClassHeight_m) + " m)");
@@ -378,6 +382,7 @@ Model train_model(std::span<const LabelledChip> chips, const ChipLoader& load,
   if (opt.group_subspaces) {
     std::vector<std::size_t> mine_cols, other_cols;
     for (std::size_t c = 0; c < pr.names.size(); ++c) {
+      if (meta[c].clutter) continue;  // neither group
       auto& dst = meta[c].mine_like ? mine_cols : other_cols;
       dst.insert(dst.end(), pr.members[c].begin(), pr.members[c].end());
     }

@@ -19,6 +19,10 @@ std::string format(const char* fmt, auto... args) {
 
 }  // namespace
 
+const char* to_string(RelookTiming t) {
+  return t == RelookTiming::kAfterSurvey ? "after_survey" : "immediate";
+}
+
 Agent::Agent(const AgentParams& params, std::vector<Leg> survey, const VehicleState& start)
     : params_(params),
       plan_(std::move(survey), start.position, params.guidance),
@@ -36,6 +40,9 @@ void Agent::step(double dt_s, std::optional<double> seabed_depth_m) {
 }
 
 void Agent::substep(double dt_s, std::optional<double> seabed_depth_m) {
+  if (plan_.done() && params_.relooks && params_.relook_timing == RelookTiming::kAfterSurvey) {
+    schedule_relook_after_survey();
+  }
   const bool detour = plan_.on_detour();
   VehicleCommand cmd;
   cmd.heading_rad = plan_.done() ? state_.heading_rad : plan_.update(state_.position);
@@ -134,13 +141,14 @@ void Agent::on_contact(const atr::Contact& c) {
   AgentObject& o = object_for(c);
   const std::optional<TrackSample> seen = look_sample(c);
   o.looks.push_back(c);
+  o.last_contact_t_s = state_.t_s;
   o.look_headings_rad.push_back(seen ? seen->heading_rad : kNaN);
   o.look_t_s.push_back(seen ? seen->t_s : state_.t_s);
   const double k = static_cast<double>(o.looks.size());
   o.position = o.position + (1.0 / k) * (Point2{c.north_m, c.east_m} - o.position);
   for (RelookRecord& r : relooks_)
     if (r.object == o.id && o.looks.size() >= 2) r.second_look = true;
-  o.decision = decide(o.looks, params_.margin_threshold);
+  o.decision = decide(o.looks, params_.margin_threshold, params_.confirm_probability);
   events_.push_back(
       format("contact %llu -> object %llu (look %zu): %s, margin %.3f -> %s %s%s",
              static_cast<unsigned long long>(c.id), static_cast<unsigned long long>(o.id),
@@ -150,26 +158,35 @@ void Agent::on_contact(const atr::Contact& c) {
              o.decision.fused.class_name.empty()
                  ? ""
                  : (o.decision.fused.mine_like ? " (mine)" : " (non-mine)")));
-  maybe_relook(o);
+  if (params_.relook_timing == RelookTiming::kImmediate) {
+    maybe_relook(o);
+  } else if (params_.relooks) {
+    relook_due_ = true;  // looked at again once the survey is done
+  }
 }
 
-void Agent::maybe_relook(AgentObject& o) {
+bool Agent::wants_relook(AgentObject& o) {
   if (!params_.relooks || o.decision.state == FinalState::kConfirmed ||
       o.relooks >= params_.max_relooks_per_object ||
-      static_cast<int>(relooks_.size()) >= params_.max_relooks) {
-    return;
+      static_cast<int>(relooks_.size()) >= params_.max_relooks || o.relook_over_budget) {
+    return false;
   }
   const FusedDecision& f = o.decision.fused;
   const bool surely_non_mine =
-      !f.mine_like && std::isfinite(f.mine_margin) && f.mine_margin >= params_.margin_threshold;
+      !f.mine_like && std::isfinite(f.mine_margin) && f.mine_margin >= params_.margin_threshold &&
+      !(std::isfinite(f.target_probability) && f.target_probability < params_.confirm_probability);
   if (params_.relook_mine_relevant_only && surely_non_mine) {
     if (!o.relook_skip_reported) {
       o.relook_skip_reported = true;
       events_.push_back(format("object %llu not re-looked: non-mine either way (mine margin %.3f)",
                                static_cast<unsigned long long>(o.id), f.mine_margin));
     }
-    return;
+    return false;
   }
+  return true;
+}
+
+RelookRecord Agent::make_relook(const AgentObject& o) const {
   // the first look's heading (the track sample where it was abeam); else the vehicle's now
   double first_heading = state_.heading_rad;
   double look_t = state_.t_s;
@@ -187,17 +204,61 @@ void Agent::maybe_relook(AgentObject& o) {
   r.plan = plan_relook(o.position, first_heading, o.id, state_.position, state_.heading_rad,
                        params_.relook, params_.bounds);
   r.look_t_s = look_t;
-  r.received_t_s = state_.t_s;
+  r.received_t_s = o.last_contact_t_s;
   r.inserted_t_s = state_.t_s;
+  return r;
+}
+
+void Agent::maybe_relook(AgentObject& o) {
+  if (!wants_relook(o)) return;
+  RelookRecord r = make_relook(o);
   plan_.insert_relook(r.plan.leg, state_.position);
   ++o.relooks;
   relooks_.push_back(r);
   events_.push_back(format(
       "relook of object %llu inserted: heading %.1f deg (first look %.1f deg), contact to %s at "
       "%.1f m, run-in from (%.1f, %.1f)",
-      static_cast<unsigned long long>(o.id), degrees(r.plan.heading_rad), degrees(first_heading),
-      r.plan.side == 1 ? "starboard" : "port", params_.relook.pass_range_m,
-      r.plan.leg.start.north_m, r.plan.leg.start.east_m));
+      static_cast<unsigned long long>(o.id), degrees(r.plan.heading_rad),
+      degrees(r.first_heading_rad), r.plan.side == 1 ? "starboard" : "port",
+      params_.relook.pass_range_m, r.plan.leg.start.north_m, r.plan.leg.start.east_m));
+}
+
+void Agent::schedule_relook_after_survey() {
+  relook_due_ = false;
+  // the cheapest re-look to reach from here among the objects that want one
+  AgentObject* best = nullptr;
+  RelookRecord best_r;
+  for (AgentObject& o : objects_) {
+    if (!wants_relook(o)) continue;
+    RelookRecord r = make_relook(o);
+    if (!best || r.plan.cost_m < best_r.plan.cost_m) {
+      best = &o;
+      best_r = r;
+    }
+  }
+  if (!best) return;
+  // its time: the transit (the planner's cost, turns included) and the leg, at the speed
+  const double estimate_s =
+      (best_r.plan.cost_m + best_r.plan.leg.length_m()) / params_.vehicle.speed_m_s;
+  if (detour_s_ + estimate_s > params_.relook_budget_s) {
+    // none fits (the cheapest does not): the budget is spent
+    for (AgentObject& o : objects_) {
+      if (!wants_relook(o)) continue;
+      o.relook_over_budget = true;
+      events_.push_back(format("object %llu not re-looked: the re-look budget (%.0f s) is spent",
+                               static_cast<unsigned long long>(o.id), params_.relook_budget_s));
+    }
+    return;
+  }
+  plan_.insert_relook(best_r.plan.leg, state_.position);
+  ++best->relooks;
+  relooks_.push_back(best_r);
+  relook_due_ = true;  // more may follow once this one is flown
+  events_.push_back(format(
+      "relook of object %llu after the survey: heading %.1f deg (first look %.1f deg), about "
+      "%.0f s (%.0f s of the %.0f s budget used)",
+      static_cast<unsigned long long>(best->id), degrees(best_r.plan.heading_rad),
+      degrees(best_r.first_heading_rad), estimate_s, detour_s_, params_.relook_budget_s));
 }
 
 std::vector<std::string> Agent::take_events() {

@@ -8,11 +8,18 @@
 // Per contact (on_contact): it joins an object (the onboard's `object` id for a look it fused,
 // else the nearest object within association_radius_m, else it starts one); the look's heading is
 // found in the vehicle's recent track (the sample where the contact was abeam, on its side, at
-// its ground range); the object's decision is made again (autonomy/contact_decision.h); an
-// uncertain object not yet re-looked gets a re-look leg (autonomy/relook.h) inserted at once:
-// the survey is cut where the vehicle is and resumes there after the re-look.
+// its ground range); the object's decision is made again (autonomy/contact_decision.h).
+//
+// Re-looks (autonomy/relook.h), when an object stays uncertain:
+//   after the survey (the default): the survey is flown to its end first (a lawnmower sees most
+//     objects twice, from neighbouring lines, and many doubts end there); then the objects still
+//     uncertain are re-looked one at a time, the cheapest to reach from where the vehicle is
+//     first, while the re-looks' time stays within relook_budget_s;
+//   immediate: an uncertain object gets its re-look leg inserted at once: the survey is cut
+//     where the vehicle is and resumes there after the re-look (within max_relooks).
 #include <cstdint>
 #include <deque>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,6 +33,10 @@
 
 namespace sonarloop::autonomy {
 
+// When uncertain objects are re-looked (see above).
+enum class RelookTiming { kAfterSurvey, kImmediate };
+const char* to_string(RelookTiming t);
+
 struct AgentParams {
   VehicleParams vehicle;
   GuidanceParams guidance;
@@ -38,6 +49,13 @@ struct AgentParams {
   // that is non-mine with a mine margin (contact_decision.h) of at least margin_threshold (e.g. a
   // rock unsure between the two hemispheres) is left as it is. false: every uncertain object
   bool relook_mine_relevant_only = true;
+  RelookTiming relook_timing = RelookTiming::kAfterSurvey;
+  // after the survey: the re-looks' mission time (their legs and the transits to them) may not
+  // exceed this; a re-look whose estimate would is not flown
+  double relook_budget_s = std::numeric_limits<double>::infinity();
+  // an object whose looks' fused target probability (the onboard's contact gate, when its model
+  // has one: atr/contact_gate.h) is below this is uncertain whatever its class margin
+  double confirm_probability = 0.5;
   double target_altitude_m = 7.5;  // altitude keeping, when the seabed's depth is measured
   double association_radius_m = 3.0;
   double history_s = 90.0;              // track kept to find where a contact was seen from
@@ -73,8 +91,10 @@ struct AgentObject {
   std::vector<atr::Contact> looks;
   std::vector<double> look_headings_rad;  // per look, the vehicle's heading (NaN: not found)
   std::vector<double> look_t_s;           // per look, when it was abeam
+  double last_contact_t_s = 0.0;          // when its latest look arrived
   int relooks = 0;
   bool relook_skip_reported = false;  // "not re-looked: non-mine either way" logged
+  bool relook_over_budget = false;    // after the survey: its re-look did not fit the budget
   ObjectDecision decision;
 };
 
@@ -89,8 +109,10 @@ class Agent {
   void on_contact(const atr::Contact& c);
 
   const VehicleState& state() const { return state_; }
+  const AgentParams& params() const { return params_; }
   const MissionPlan& plan() const { return plan_; }
-  bool mission_done() const { return plan_.done(); }
+  // The plan is flown, and after the survey no uncertain object is left to re-look.
+  bool mission_done() const { return plan_.done() && !relook_due_; }
   const std::vector<AgentObject>& objects() const { return objects_; }
   const std::vector<RelookRecord>& relooks() const { return relooks_; }
   double travelled_m() const { return travelled_m_; }
@@ -103,7 +125,12 @@ class Agent {
   void substep(double dt_s, std::optional<double> seabed_depth_m);
   AgentObject& object_for(const atr::Contact& c);
   std::optional<TrackSample> look_sample(const atr::Contact& c) const;
+  // Whether `o` is one to re-look (uncertain, mine-relevant, re-looks left); logs a skip once.
+  bool wants_relook(AgentObject& o);
   void maybe_relook(AgentObject& o);
+  // After the survey: the next re-look, the cheapest to reach, if one fits the budget.
+  void schedule_relook_after_survey();
+  RelookRecord make_relook(const AgentObject& o) const;
   void check_pass();
 
   AgentParams params_;
@@ -115,6 +142,7 @@ class Agent {
   std::vector<RelookRecord> relooks_;
   std::vector<std::string> events_;
   double travelled_m_ = 0.0, detour_m_ = 0.0, detour_s_ = 0.0;
+  bool relook_due_ = false;  // after the survey: an object may still be re-looked
 };
 
 }  // namespace sonarloop::autonomy

@@ -67,6 +67,8 @@ std::optional<atr::Contact> contact_from_json(std::string_view line, std::string
   c.fused_class = j->string("fused_class").value_or("");
   c.fused_mine_like = j->boolean("fused_mine_like").value_or(false);
   if (const auto s = j->number("open_set_score")) c.open_set_score = *s;
+  if (const auto p = j->number("target_probability")) c.target_probability = *p;
+  if (const auto d = j->number("clutter_distance")) c.clutter_distance = *d;
   c.unknown = j->boolean("unknown").value_or(false);
   c.status = j->string("status").value_or("");
   return c;
@@ -92,6 +94,16 @@ double group_gap(double a, double b) {
 
 FusedDecision fuse_looks(const std::vector<atr::Contact>& looks) {
   FusedDecision f;
+  // the target probability: the mean log-odds of the looks that have one
+  double logit_sum = 0.0;
+  int with_p = 0;
+  for (const atr::Contact& c : looks) {
+    if (!c.target_probability || !std::isfinite(*c.target_probability)) continue;
+    const double p = std::clamp(*c.target_probability, 1e-9, 1.0 - 1e-9);
+    logit_sum += std::log(p / (1.0 - p));
+    ++with_p;
+  }
+  if (with_p > 0) f.target_probability = 1.0 / (1.0 + std::exp(-logit_sum / with_p));
   std::map<std::string, double> sum;  // D_c
   std::map<std::string, bool> mine_like_of;
   double mine_sum = 0.0, non_mine_sum = 0.0;
@@ -145,10 +157,13 @@ const char* to_string(FinalState s) {
   return s == FinalState::kConfirmed ? "confirmed" : "uncertain";
 }
 
-ObjectDecision decide(const std::vector<atr::Contact>& looks, double threshold) {
+ObjectDecision decide(const std::vector<atr::Contact>& looks, double threshold,
+                      double confirm_probability) {
   ObjectDecision d;
   d.fused = fuse_looks(looks);
   if (d.fused.class_name.empty()) return d;
+  const bool unsure_target =
+      std::isfinite(d.fused.target_probability) && d.fused.target_probability < confirm_probability;
   if (d.fused.looks == 1) {
     // the one classified look's own margin
     for (const atr::Contact& c : looks) {
@@ -160,7 +175,8 @@ ObjectDecision decide(const std::vector<atr::Contact>& looks, double threshold) 
                                 ? group_gap(c.mine_distance, c.non_mine_distance)
                                 : kMissing;
     }
-    d.state = d.fused.margin >= threshold ? FinalState::kConfirmed : FinalState::kUncertain;
+    d.state = d.fused.margin >= threshold && !unsure_target ? FinalState::kConfirmed
+                                                            : FinalState::kUncertain;
     return d;
   }
   // a majority of at least two classified looks name the fused class
@@ -171,7 +187,8 @@ ObjectDecision decide(const std::vector<atr::Contact>& looks, double threshold) 
     votes += c.class_name == d.fused.class_name;
   }
   const bool agree = votes >= 2 && 2 * votes > classified_looks;
-  d.state = d.fused.margin >= threshold || agree ? FinalState::kConfirmed : FinalState::kUncertain;
+  d.state = (d.fused.margin >= threshold || agree) && !unsure_target ? FinalState::kConfirmed
+                                                                     : FinalState::kUncertain;
   return d;
 }
 

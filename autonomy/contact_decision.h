@@ -21,15 +21,23 @@
 // (fields looks >= 2, fused_class, fused_mine_like: atr/look_fusion.h), its class and mine-likeness
 // are used, the margin still from the sum above.
 //
-// Final state of an object, for a margin threshold T:
+// Target probability: with a model that has a contact gate, each look carries the probability
+// that it is a target rather than clutter (atr/contact_gate.h, Contact::target_probability). The
+// looks' probabilities are fused by the mean of their log-odds (a look's gate already weighs its
+// evidence; several looks of one object are not independent enough to add them).
+//
+// Final state of an object, for a margin threshold T and a confirm probability P:
 //   one look:    confirmed when margin >= T, else uncertain (a re-look is due)
 //   more looks:  confirmed when the fused margin >= T, or when the looks agree: at least two
 //                classified looks, and more than half of them, name the fused class as their
 //                own (independent aspects agree); else uncertain
+//   either way, uncertain while the fused target probability (when the looks have one) is
+//   below P: not sure it is a target at all
 //
 // Mine margin: the same relative gap between the mine-like and non-mine group distances
 // (mine_distance, non_mine_distance; summed normalised over the looks as above): how sure the
 // mine / non-mine decision is, whatever the class. NaN when a look lacks either group.
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -52,6 +60,7 @@ struct FusedDecision {
   double mine_margin = 0.0;   // (d_far - d_near) / d_near of the two groups; NaN: no groups
   int looks = 0;              // classified looks used
   bool from_onboard = false;  // class and mine-likeness from the onboard's fused fields
+  double target_probability = std::numeric_limits<double>::quiet_NaN();  // NaN: no gate
 };
 
 FusedDecision fuse_looks(const std::vector<atr::Contact>& looks);
@@ -64,6 +73,7 @@ struct ObjectDecision {
   FusedDecision fused;
 };
 
-ObjectDecision decide(const std::vector<atr::Contact>& looks, double threshold);
+ObjectDecision decide(const std::vector<atr::Contact>& looks, double threshold,
+                      double confirm_probability = 0.5);
 
 }  // namespace sonarloop::autonomy

@@ -27,6 +27,7 @@ enum class RngStream : std::uint64_t {
   kDataset = 9,     // dataset sample parameters
   kRayJitter = 10,  // renderer ray jitter
   kTraining = 11,   // classifier train/test splits
+  kLayout = 12,     // random target layouts of surveys (mission/layout.h)
 };
 
 // The SplitMix64 output finaliser: a bijection of 64-bit integers with good avalanche.

@@ -8,7 +8,6 @@
 
 #include "drivers/xtf/xtf_codec.h"
 #include "emulator/xtf_ping.h"
-#include "units/angles.h"
 
 namespace sonarloop::emulator {
 namespace {
@@ -154,16 +153,8 @@ void ScenePingProducer::produce(std::int64_t k, int worker, PingSlot& slot) {
 
   // the navigation the sonar records with it
   const vehicle::NavSolution nav = nav_model->measure(state);
-  PingNav pn;
-  pn.time_utc_ns = truth.time_utc_ns;
-  pn.sensor = setup_.ltp->to_geodetic(nav.north_m, nav.east_m);
-  pn.heading_deg = nav.heading * kDegPerRad;
-  pn.pitch_deg = nav.pitch * kDegPerRad;
-  pn.roll_deg = nav.roll * kDegPerRad;
-  pn.depth_m = nav.depth_m;
-  pn.altitude_m = std::isfinite(nav.altitude_m) ? nav.altitude_m : slot.lines.altitude_m;
-  pn.speed_m_s = nav.speed_over_ground_m_s;
-  pn.ping_number = static_cast<std::uint32_t>(k);
+  const PingNav pn = ping_nav_of(nav, *setup_.ltp, truth.time_utc_ns, slot.lines.altitude_m,
+                                 static_cast<std::uint32_t>(k));
   make_xtf_ping(setup_.renderer->sonar(), *setup_.header, slot.lines, pn, slot.xtf);
   slot.packet_size = xtf::encode_ping(slot.xtf, *setup_.header, slot.packet);
 

@@ -152,6 +152,22 @@ void check_chan_info(const render::SonarSetup& s, const xtf::XtfFileHeader& head
 
 }  // namespace
 
+PingNav ping_nav_of(const vehicle::NavSolution& nav, const LocalTangentPlane& ltp,
+                    std::int64_t time_utc_ns, double rendered_altitude_m,
+                    std::uint32_t ping_number) {
+  PingNav pn;
+  pn.time_utc_ns = time_utc_ns;
+  pn.sensor = ltp.to_geodetic(nav.north_m, nav.east_m);
+  pn.heading_deg = nav.heading * kDegPerRad;
+  pn.pitch_deg = nav.pitch * kDegPerRad;
+  pn.roll_deg = nav.roll * kDegPerRad;
+  pn.depth_m = nav.depth_m;
+  pn.altitude_m = std::isfinite(nav.altitude_m) ? nav.altitude_m : rendered_altitude_m;
+  pn.speed_m_s = nav.speed_over_ground_m_s;
+  pn.ping_number = ping_number;
+  return pn;
+}
+
 xtf::XtfFileHeader make_xtf_file_header(const render::SonarSetup& sonar,
                                         const std::string& sonar_name, const std::string& note) {
   xtf::XtfFileHeader h;

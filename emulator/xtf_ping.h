@@ -41,6 +41,7 @@
 #include "drivers/xtf/xtf_types.h"
 #include "sim/render/ping_renderer.h"
 #include "sim/render/sonar.h"
+#include "sim/vehicle/nav_sensor.h"
 
 namespace sonarloop::emulator {
 
@@ -77,6 +78,13 @@ struct PingNav {
   double speed_m_s = 0.0;        // over ground
   std::uint32_t ping_number = 0;
 };
+
+// The navigation a ping records: the navigation solution at the ping's time (`nav`), the
+// sensor's position through `ltp`, angles in degrees; where the solution has no altitude (NaN),
+// the one the renderer found below the sonar (`rendered_altitude_m`, PingLines::altitude_m).
+PingNav ping_nav_of(const vehicle::NavSolution& nav, const LocalTangentPlane& ltp,
+                    std::int64_t time_utc_ns, double rendered_altitude_m,
+                    std::uint32_t ping_number);
 
 // The file header for a sonar: 2 channels (PORT, STARBOARD) described from `sonar` (frequency,
 // beam widths, depression, sample type, bins). `sonar_name` (16 bytes) and `note` (64 bytes) are

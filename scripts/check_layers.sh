@@ -10,6 +10,8 @@
 #   atr      <- atr, drivers, common (the onboard side must not link the simulator)
 #   study    <- study, atr, sim, drivers, common (the offline resolution study and chip folders)
 #   autonomy <- autonomy, atr, drivers, common (the example agent: what a vehicle would run)
+#   mission  <- mission, autonomy, study, emulator, atr, sim, drivers, common (the closed loop in
+#               lock-step and survey scoring: offline, where the simulator meets the onboard side)
 #   tools    <- anything
 #   units/ (header-only constants, e.g. angles) may be included from every layer
 # The tests of the onboard side (tests/common, tests/atr, tests/autonomy) are held to their
@@ -30,6 +32,7 @@ declare -A allowed=(
   [atr]="atr drivers common units"
   [study]="study atr sim drivers common units"
   [autonomy]="autonomy atr drivers common units"
+  [mission]="mission autonomy study emulator atr sim drivers common units"
 )
 
 # third-party header (first path component, or the file name) -> the layers that may include it

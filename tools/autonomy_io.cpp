@@ -184,6 +184,9 @@ void write_object(json::Writer& w, const autonomy::AgentObject& o) {
     w.value(d.fused.mine_like);
   w.field("margin", d.fused.margin, 6).field("looks", static_cast<int>(o.looks.size()));
   w.field("classified_looks", d.fused.looks).field("relooked", o.relooks > 0);
+  if (std::isfinite(d.fused.target_probability))
+    w.field("target_probability", d.fused.target_probability, 6);
+  if (o.relook_over_budget) w.field("relook_over_budget", true);
   w.field("first_margin", autonomy::decision_margin(o.looks.front()), 6);
   w.key("first_class");
   if (o.looks.front().class_name.empty())
@@ -201,6 +204,7 @@ void write_object(json::Writer& w, const autonomy::AgentObject& o) {
   w.end_object();
 }
 
+// rate <= 0: lock-step (no wall time)
 void write_relook(json::Writer& w, const autonomy::RelookRecord& r, double rate) {
   using autonomy::degrees;
   w.begin_object();
@@ -220,7 +224,7 @@ void write_relook(json::Writer& w, const autonomy::RelookRecord& r, double rate)
   w.field("look_t_s", r.look_t_s, 8).field("received_t_s", r.received_t_s, 8);
   w.field("inserted_t_s", r.inserted_t_s, 8);
   w.field("latency_s", r.inserted_t_s - r.look_t_s, 6);
-  w.field("latency_wall_s", (r.inserted_t_s - r.look_t_s) / rate, 6);
+  if (rate > 0) w.field("latency_wall_s", (r.inserted_t_s - r.look_t_s) / rate, 6);
   w.end_object();
 }
 
@@ -229,30 +233,41 @@ void write_relook(json::Writer& w, const autonomy::RelookRecord& r, double rate)
 std::string agent_report_json(const autonomy::Agent& agent, const AgentRunInfo& info) {
   json::Writer w(true);
   w.begin_object();
-  w.field("rate", info.rate, 6).field("threshold", info.threshold, 6);
+  if (info.lockstep) {
+    w.field("mode", "lockstep");
+  } else {
+    w.field("mode", "realtime").field("rate", info.rate, 6);
+  }
+  w.field("threshold", info.threshold, 6);
   w.field("relooks_enabled", info.relooks).field("stopped", info.stopped);
+  w.field("relook_timing", autonomy::to_string(agent.params().relook_timing));
+  if (std::isfinite(agent.params().relook_budget_s))
+    w.field("relook_budget_s", agent.params().relook_budget_s, 8);
   w.field("mission_done", agent.mission_done());
-  w.field("sim_time_s", agent.state().t_s, 8).field("wall_time_s", info.wall_time_s, 6);
+  w.field("sim_time_s", agent.state().t_s, 8);
+  if (!info.lockstep) w.field("wall_time_s", info.wall_time_s, 6);
   w.field("distance_m", agent.travelled_m(), 8).field("survey_plan_m", info.survey_plan_m, 8);
   w.field("relook_distance_m", agent.detour_distance_m(), 8);
   w.field("relook_time_s", agent.detour_time_s(), 8);
   w.field("contacts_received", info.contacts_received);
-  w.field("contacts_malformed", info.contacts_malformed);
-  w.field("poses_sent", info.poses_sent);
-  w.key("nav").begin_object();
-  w.field("frames", info.nav.frames).field("decoded", info.nav.decoded);
-  w.field("position_updates", info.nav.position_updates);
-  w.field("depth_updates", info.nav.depth_updates);
-  w.field("offset_mean_m", info.nav_offset_mean_m, 6);
-  w.field("offset_max_m", info.nav_offset_max_m, 6);
-  w.end_object();
+  if (!info.lockstep) {
+    w.field("contacts_malformed", info.contacts_malformed);
+    w.field("poses_sent", info.poses_sent);
+    w.key("nav").begin_object();
+    w.field("frames", info.nav.frames).field("decoded", info.nav.decoded);
+    w.field("position_updates", info.nav.position_updates);
+    w.field("depth_updates", info.nav.depth_updates);
+    w.field("offset_mean_m", info.nav_offset_mean_m, 6);
+    w.field("offset_max_m", info.nav_offset_max_m, 6);
+    w.end_object();
+  }
   w.key("objects").begin_array();
   for (const auto& o : agent.objects())
     write_object(w, o);
   w.end_array();
   w.key("relooks").begin_array();
   for (const auto& r : agent.relooks())
-    write_relook(w, r, info.rate);
+    write_relook(w, r, info.lockstep ? 0.0 : info.rate);
   w.end_array();
   w.end_object();
   return w.str();

@@ -91,6 +91,10 @@ class PosePublisher {
 
 // What the report says besides the agent's own state.
 struct AgentRunInfo {
+  // flown in lock-step (mission/lockstep.h): no wall clock, no wire; the report then leaves out
+  // what depends on them (rate, wall times, poses sent, the navigation read from the bus), so
+  // that it is a function of the scenario and seed alone
+  bool lockstep = false;
   double rate = 1.0;
   double threshold = 0.0;
   bool relooks = true;

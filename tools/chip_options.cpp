@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "atr/model_file.h"
+#include "mission/survey_training.h"
 #include "sim/targets/target_type.h"
 #include "tools/cli_helpers.h"
 
@@ -58,10 +59,9 @@ std::optional<study::ChipSize> chip_size_option(const Args& args) {
 }
 
 std::map<std::string, atr::ClassMetadata, std::less<>> sim_class_metadata() {
-  std::map<std::string, atr::ClassMetadata, std::less<>> out;
-  for (const auto& t : targets::target_type_table())
-    out[std::string(t.key)] = {t.mine_like, t.size_m.z()};
-  return out;
+  // the simulator's target types, and the false alarms of training surveys (`dataset
+  // --surveys`): not a target, height unknown
+  return mission::survey_class_metadata();
 }
 
 std::map<std::string, atr::ClassMetadata, std::less<>> class_metadata_options(

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <filesystem>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -120,6 +121,54 @@ atr::ChipPreprocess preprocess_options(const Args& args, bool* crop_auto) {
   }
   p.threshold_db = args.get_double("--threshold-db", 0.1, 59.0).value_or(6.0);
   return p;
+}
+
+std::optional<autonomy::SurveyArea> area_option(const Args& args) {
+  const auto v = args.get("--area");
+  if (!v) return std::nullopt;
+  const std::vector<std::string> parts = split_comma_list(*v);
+  double x[4];
+  bool ok = parts.size() == 4;
+  for (std::size_t i = 0; ok && i < 4; ++i) {
+    char* end = nullptr;
+    x[i] = std::strtod(parts[i].c_str(), &end);
+    ok = *end == '\0' && std::isfinite(x[i]);
+  }
+  if (!ok || !(x[2] > x[0]) || !(x[3] > x[1])) {
+    throw UsageError("--area: expected N0,E0,N1,E1 in metres with N1 > N0 and E1 > E0, got '" + *v +
+                     "'");
+  }
+  return autonomy::SurveyArea{{x[0], x[1]}, {x[2], x[3]}};
+}
+
+mission::AgentOverrides agent_options(const Args& args) {
+  mission::AgentOverrides o;
+  o.area = area_option(args);
+  o.area_margin_m = args.get_double("--area-margin", 0.0, 1e4).value_or(o.area_margin_m);
+  o.line_spacing_m = args.get_double("--line-spacing", 1.0, 1e4).value_or(o.line_spacing_m);
+  o.pass_range_m = args.get_double("--pass-range", 1.0, 1000.0);
+  o.threshold = args.get_double("--threshold", 0.0, 1e9);
+  o.relooks = !args.has("--no-relook");
+  o.relook_all = args.has("--relook-all");
+  o.max_relooks =
+      static_cast<int>(args.get_int("--max-relooks", 0, 1 << 30).value_or(o.max_relooks));
+  if (const auto t = args.get("--relook-timing")) {
+    if (*t == "after-survey") {
+      o.relook_timing = autonomy::RelookTiming::kAfterSurvey;
+    } else if (*t == "immediate") {
+      o.relook_timing = autonomy::RelookTiming::kImmediate;
+    } else {
+      throw UsageError("--relook-timing: expected after-survey or immediate, got '" + *t + "'");
+    }
+  }
+  if (const auto b = args.get("--relook-budget")) {
+    if (*b == "none") {
+      o.relook_budget_fraction = std::numeric_limits<double>::infinity();
+    } else {
+      o.relook_budget_fraction = *args.get_double("--relook-budget", 0.0, 100.0);
+    }
+  }
+  return o;
 }
 
 }  // namespace sonarloop::tools

@@ -1,9 +1,12 @@
 #pragma once
 // Small helpers shared by the sonarloop subcommands: comma lists and a Ctrl-C stop flag.
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "atr/chip_preprocess.h"
+#include "autonomy/survey.h"
+#include "mission/agent_setup.h"
 #include "sim/render/chip_renderer.h"
 #include "sim/render/ping_renderer.h"
 #include "tools/args.h"
@@ -28,6 +31,16 @@ bool is_yaml_path(const std::string& s);
 // rocky) or scenario files NAME.yaml (their seed, water and seabed; named NAME). Throws
 // UsageError for an unknown kind or a name listed twice (a bad file: config::ConfigError).
 std::vector<render::DatasetSeabed> dataset_seabeds_option(const std::string& text);
+
+// --area N0,E0,N1,E1 of autonomy and mission: the survey rectangle's south-west and north-east
+// corners in metres; nullopt when not given. Throws UsageError for a malformed value.
+std::optional<autonomy::SurveyArea> area_option(const Args& args);
+
+// The agent's options that autonomy and mission share: --area, --area-margin, --line-spacing,
+// --pass-range, --threshold, --no-relook, --relook-all, --max-relooks, --relook-timing
+// after-survey|immediate and --relook-budget F (a fraction of the survey's time, or "none").
+// Throws UsageError.
+mission::AgentOverrides agent_options(const Args& args);
 
 // --renderer profile|raytrace (default profile); a UsageError names the choices.
 render::RendererKind renderer_option(const Args& args);

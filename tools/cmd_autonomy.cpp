@@ -11,6 +11,7 @@
 
 #include "autonomy/agent.h"
 #include "autonomy/survey.h"
+#include "mission/agent_setup.h"
 #include "tools/args.h"
 #include "tools/autonomy_io.h"
 #include "tools/cli_helpers.h"
@@ -48,65 +49,18 @@ net::HostPort udp_option(const Args& args, const std::string& name) {
   }
 }
 
-// --area N0,E0,N1,E1: south-west and north-east corners.
-std::optional<autonomy::SurveyArea> area_option(const Args& args) {
-  const auto v = args.get("--area");
-  if (!v) return std::nullopt;
-  const std::vector<std::string> parts = split_comma_list(*v);
-  double x[4];
-  bool ok = parts.size() == 4;
-  for (std::size_t i = 0; ok && i < 4; ++i) {
-    char* end = nullptr;
-    x[i] = std::strtod(parts[i].c_str(), &end);
-    ok = *end == '\0' && std::isfinite(x[i]);
-  }
-  if (!ok || !(x[2] > x[0]) || !(x[3] > x[1])) {
-    throw UsageError("--area: expected N0,E0,N1,E1 in metres with N1 > N0 and E1 > E0, got '" + *v +
-                     "'");
-  }
-  return autonomy::SurveyArea{{x[0], x[1]}, {x[2], x[3]}};
-}
-
-struct Setup {
-  autonomy::AgentParams params;
-  autonomy::SurveyArea area;
-  GeoPoint origin;
-  double start_depth_m = 0.0;
-};
-
 // The area, origin, speed and altitude of the scenario (or the options that replace them).
-Setup setup_from(const Args& args) {
+mission::AgentSetup setup_from(const Args& args, double spacing_m) {
   const config::Scenario sc = load_scenario_or_default(args.get("--scenario"));
-  Setup s;
-  s.origin = GeoPoint{sc.scene.origin.latitude_deg, sc.scene.origin.longitude_deg};
-  const double margin = args.get_double("--area-margin", 0.0, 1e4).value_or(50.0);
-  const auto& sb = sc.scene.seabed;
-  s.area = area_option(args).value_or(autonomy::SurveyArea{
-      {sb.origin_m.x() + margin, sb.origin_m.y() + margin},
-      {sb.origin_m.x() + sb.extent_m.x() - margin, sb.origin_m.y() + sb.extent_m.y() - margin}});
-  if (!(s.area.max.north_m > s.area.min.north_m) || !(s.area.max.east_m > s.area.min.east_m)) {
-    throw UsageError("--area-margin leaves no area of the scenario's seabed to survey");
+  mission::AgentOverrides o = agent_options(args);
+  o.line_spacing_m = spacing_m;
+  o.speed_m_s = args.get_double("--speed", 0.1, 20.0);
+  o.altitude_m = args.get_double("--altitude", 1.0, 100.0);
+  try {
+    return mission::make_agent_setup(sc, o);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--area-margin: ") + e.what());
   }
-  const auto& tr = sc.vehicle.trajectory;
-  autonomy::AgentParams& p = s.params;
-  p.vehicle.speed_m_s = args.get_double("--speed", 0.1, 20.0).value_or(tr.speed_m_s);
-  p.vehicle.max_turn_rate_rad_s = tr.max_turn_rate_rad_s;
-  p.vehicle.max_vertical_rate_m_s = tr.depth.max_climb_rate_m_s;
-  p.target_altitude_m = args.get_double("--altitude", 1.0, 100.0).value_or(tr.depth.altitude_m);
-  p.relook.turn_radius_m = p.vehicle.turn_radius_m();
-  p.relook.pass_range_m =
-      args.get_double("--pass-range", 1.0, 1000.0).value_or(p.relook.pass_range_m);
-  p.margin_threshold = args.get_double("--threshold", 0.0, 1e9).value_or(p.margin_threshold);
-  p.relooks = !args.has("--no-relook");
-  p.relook_mine_relevant_only = !args.has("--relook-all");
-  p.max_relooks =
-      static_cast<int>(args.get_int("--max-relooks", 0, 1 << 30).value_or(p.max_relooks));
-  // re-looks may use the seabed's whole extent
-  p.bounds =
-      autonomy::SurveyArea{{sb.origin_m.x(), sb.origin_m.y()},
-                           {sb.origin_m.x() + sb.extent_m.x(), sb.origin_m.y() + sb.extent_m.y()}};
-  s.start_depth_m = std::max(0.0, sc.scene.water.depth_m - p.target_altitude_m);
-  return s;
 }
 
 void print_events(autonomy::Agent& agent, bool quiet) {
@@ -116,9 +70,10 @@ void print_events(autonomy::Agent& agent, bool quiet) {
 }
 
 // The survey and the wiring, one line each.
-void print_plan(const Setup& setup, const std::vector<autonomy::Leg>& survey, double spacing_m,
-                const AgentRunInfo& info, double rate, const ContactListener& contacts,
-                const net::HostPort& pose_to, const std::string& nav_spec) {
+void print_plan(const mission::AgentSetup& setup, const std::vector<autonomy::Leg>& survey,
+                double spacing_m, const AgentRunInfo& info, double rate,
+                const ContactListener& contacts, const net::HostPort& pose_to,
+                const std::string& nav_spec) {
   std::fprintf(stderr,
                "autonomy: survey of (%.0f, %.0f)-(%.0f, %.0f) m, %zu lines %.0f m apart (%.0f "
                "m), re-looks %s (margin threshold %.3g, pass range %.0f m), rate %g\n",
@@ -211,6 +166,8 @@ int run_autonomy(const std::vector<std::string>& argv) {
                          {"--no-relook", false},
                          {"--relook-all", false},
                          {"--max-relooks"},
+                         {"--relook-timing"},
+                         {"--relook-budget"},
                          {"--pass-range"},
                          {"--line-spacing"},
                          {"--area"},
@@ -239,13 +196,9 @@ int run_autonomy(const std::vector<std::string>& argv) {
   std::optional<OutputFile> report;
   if (const auto r = args.get("--report")) report.emplace("--report", *r);
 
-  Setup setup = setup_from(args);
-  const std::vector<autonomy::Leg> survey = autonomy::lawnmower(setup.area, spacing_m);
-  autonomy::VehicleState start;
-  start.position = survey.front().start;
-  start.heading_rad = survey.front().heading_rad();
-  start.depth_m = setup.start_depth_m;
-  autonomy::Agent agent(setup.params, survey, start);
+  const mission::AgentSetup setup = setup_from(args, spacing_m);
+  const std::vector<autonomy::Leg>& survey = setup.survey;
+  autonomy::Agent agent(setup.params, survey, setup.start);
   const LocalTangentPlane ltp(setup.origin);
   AgentRunInfo info;
   info.rate = rate;
@@ -292,10 +245,12 @@ survey with a simple vehicle model (speed, bounded turn rate, altitude keeping) 
 its pose to the emulator (`run --pose-from udp:...`, emulator/pose_message.md) so that the
 pings come from where it steers. It reads the onboard consumer's contacts (`onboard --contacts
 udp:...`: one JSON line per datagram, atr/contact.h) and the navigation from CAN (NMEA 2000;
-the seabed's depth from PGN 128267 closes the altitude keeping). Each contact whose decision
+the seabed's depth from PGN 128267 closes the altitude keeping). An object whose decision
 margin (runner-up distance - distance, over the distance; or 1 - the open-set score) is below
---threshold gets a re-look: a straight pass about 90 degrees from the first look, the contact
-abeam at --pass-range, inserted at once; the survey then resumes where it was cut. Looks of an
+--threshold, or whose target probability (a model with contact gates) is below 0.5, is
+uncertain and gets a re-look: a straight pass about 90 degrees from the first look, the contact
+abeam at --pass-range; by default once the survey is done, the cheapest first, within the
+re-look budget (--relook-timing immediate: at once, the survey resumed where it was cut). Looks of an
 object are fused (the onboard's fused fields, or a sum of normalised distances) and every object
 ends confirmed (class, mine / non-mine, looks) or uncertain. The model runs at --rate times real
 time, as the emulator must. Ends when the survey is done and --drain seconds passed, or on
@@ -318,6 +273,11 @@ options:
   --relook-all           re-look every uncertain object; by default one that is non-mine
                          either way (its mine margin reaches --threshold, e.g. a rock unsure
                          between the two hemispheres) is not re-looked
+  --relook-timing T      after-survey (default: the survey to its end, then the objects still
+                         uncertain, the cheapest to reach first) or immediate (each as it
+                         comes: the survey is cut and resumed after it)
+  --relook-budget F      after the survey, the re-looks take at most F times the survey's
+                         planned time (default 0.5); none: no limit
   --max-relooks N        the mission's re-look budget: the first N uncertain objects only
   --pass-range M         ground range of the contact on the re-look pass (default 25)
   --altitude M           altitude kept above the seabed (default: the scenario's)

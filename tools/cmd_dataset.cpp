@@ -26,6 +26,7 @@
 #include "tools/commands.h"
 #include "tools/mpi_world.h"
 #include "tools/progress.h"
+#include "tools/survey_training.h"
 
 namespace sonarloop::tools {
 namespace {
@@ -309,6 +310,9 @@ void write_chip(DatasetFiles& files, const render::ChipImage& c,
 }
 
 int run_dataset(const std::vector<std::string>& argv) {
+  for (const std::string& a : argv) {
+    if (a == "--surveys" || a.rfind("--surveys=", 0) == 0) return run_survey_dataset(argv);
+  }
   const Args args(argv, {{"--out"},
                          {"--resolution-cm", true, true},
                          {"--count"},
@@ -432,6 +436,15 @@ writes them all: the same files as one process.
 `sonarloop train` and `classify` read a dataset folder directly. Ctrl-C stops cleanly: every PNG
 on disk then has its labels.csv row, and every row its PNG.
 
+Chips from surveys (--surveys SCENARIOS): instead of single targets, the chips the onboard
+consumer cuts from lock-step surveys of the scenarios' seabeds (files or built-in names) with
+their targets drawn afresh: every target the detector found, centred on the truth, and its false
+alarms as a "clutter" class (pass 1 of `train --surveys`; mission/survey_chips.h). Writes
+DIR/<class>/<index>.png and DIR/labels.csv (file,class,aspect_deg,mine_like,source); takes
+--surveys-per-scenario N (default 2), --per-type N (default 8), --classes, --seed (default
+100000), --min-separation M, --area-margin M, --max-clutter N (default 400), --no-clutter,
+--threads.
+
 options:
   --out DIR              output folder: new or empty (required)
   --resolution-cm R      pixel size in cm, 0.5..100 (repeatable; default 5)
@@ -455,6 +468,7 @@ examples:
   sonarloop dataset --out out/study --resolution-cm 3 --resolution-cm 10 --resolution-cm 30
   sonarloop dataset --out out/shadows --kind shadow --classes all --seed 7
   mpirun -np 4 sonarloop dataset --out out/big --count 100000 --threads 2
+  sonarloop dataset --surveys survey_clutter,survey_rocky --out out/survey_chips
 )",
     run_dataset, 40};
 SONARLOOP_REGISTER_COMMAND(kDatasetCommand);

@@ -1,6 +1,8 @@
-// sonarloop mission: the whole autonomy loop for a scenario — the emulator (`run`), the onboard
-// consumer (`onboard`) and the agent (`autonomy`) as three child processes of this binary on
-// loopback, then a summary and a JSON report (tools/mission_report.h).
+// sonarloop mission: the whole autonomy loop for a scenario — by default in lock-step in this
+// process (mission/lockstep.h: reproducible, scored against the truth over any number of seeds),
+// or with --realtime as three child processes of this binary on loopback: the emulator (`run`),
+// the onboard consumer (`onboard`) and the agent (`autonomy`); then a summary and a JSON report
+// (tools/mission_report.h).
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <signal.h>
@@ -9,6 +11,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -17,13 +20,19 @@
 #include <thread>
 #include <vector>
 
+#include "atr/contact.h"
 #include "drivers/json/json_writer.h"
 #include "drivers/net/unique_fd.h"
+#include "mission/mission_run.h"
 #include "tools/args.h"
+#include "tools/autonomy_io.h"
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
+#include "tools/default_model.h"
 #include "tools/mission_report.h"
+#include "tools/onboard_output.h"
 #include "tools/output_file.h"
+#include "tools/progress.h"
 #include "tools/scenario_source.h"
 
 namespace sonarloop::tools {
@@ -135,8 +144,8 @@ struct Logs {
   }
 };
 
-std::vector<std::string> onboard_args(const std::string& model, const Ports& ports,
-                                      const Logs& logs,
+std::vector<std::string> onboard_args(const Args& args, const std::string& model,
+                                      const Ports& ports, const Logs& logs,
                                       const std::vector<std::string>& scenario_args) {
   std::vector<std::string> onboard = {"onboard",
                                       "--listen",
@@ -148,6 +157,10 @@ std::vector<std::string> onboard_args(const std::string& model, const Ports& por
                                       "--stats-json",
                                       logs.path("onboard_stats.json")};
   onboard.insert(onboard.end(), scenario_args.begin(), scenario_args.end());
+  if (const auto h = args.get("--detector-threshold")) {
+    onboard.push_back("--detector-threshold");
+    onboard.push_back(*h);
+  }
   return onboard;
 }
 
@@ -182,7 +195,7 @@ std::vector<std::string> agent_args(const Args& args, const std::string& rate, c
                                     logs.path("agent.json")};
   agent.insert(agent.end(), scenario_args.begin(), scenario_args.end());
   for (const char* o : {"--threshold", "--line-spacing", "--pass-range", "--max-duration", "--area",
-                        "--area-margin", "--max-relooks"}) {
+                        "--area-margin", "--max-relooks", "--relook-timing", "--relook-budget"}) {
     if (const auto v = args.get(o)) {
       agent.push_back(o);
       agent.push_back(*v);
@@ -246,28 +259,10 @@ std::string run_settings_json(const Args& args, const config::Scenario& scenario
   return settings.str();
 }
 
-int run_mission(const std::vector<std::string>& argv) {
-  const Args args(argv, {{"--model"},
-                         {"--rate"},
-                         {"--threshold"},
-                         {"--no-relook", false},
-                         {"--relook-all", false},
-                         {"--report"},
-                         {"--out"},
-                         {"--line-spacing"},
-                         {"--pass-range"},
-                         {"--area"},
-                         {"--area-margin"},
-                         {"--max-relooks"},
-                         {"--max-duration"},
-                         {"--quiet", false}});
-  if (args.positionals().size() > 1) throw UsageError("expected at most one SCENARIO.yaml");
-  const auto model = args.get("--model");
-  if (!model) throw UsageError("--model MODEL is required (a model of `sonarloop train`)");
-  if (!std::filesystem::exists(*model)) throw UsageError("--model " + *model + ": no such file");
-  const std::optional<std::string> scenario_path =
-      args.positionals().empty() ? std::nullopt : std::optional(args.positionals()[0]);
-  const config::Scenario scenario = load_scenario_or_default(scenario_path);
+// --realtime: the three processes on loopback (the code above).
+int run_realtime(const Args& args, const std::string& model,
+                 const std::optional<std::string>& scenario_path,
+                 const config::Scenario& scenario) {
   const std::string rate = args.get_or("--rate", "10");
   args.get_double("--rate", 0.01, 1000.0);  // validated here, used by the children
   const std::string report_path = args.get_or("--report", "out/mission.json");
@@ -281,14 +276,14 @@ int run_mission(const std::vector<std::string>& argv) {
   const Ports ports;
   std::vector<std::string> scenario_args;
   if (scenario_path) scenario_args = {"--scenario", *scenario_path};
-  const std::vector<std::string> onboard = onboard_args(*model, ports, logs, scenario_args);
+  const std::vector<std::string> onboard = onboard_args(args, model, ports, logs, scenario_args);
   const std::vector<std::string> emulator = emulator_args(scenario_path, rate, ports, logs);
   const std::vector<std::string> agent = agent_args(args, rate, ports, logs, scenario_args);
 
   // run: until the agent ends, then stop the others
   install_stop_flag();
   std::fprintf(stderr,
-               "mission: scenario '%s', rate %s, re-looks %s; logs in %s (onboard.log, "
+               "mission: scenario '%s', real time x %s, re-looks %s; logs in %s (onboard.log, "
                "emulator.log, agent.log)\n",
                scenario.scene.name.c_str(), rate.c_str(), args.has("--no-relook") ? "off" : "on",
                logs.dir.c_str());
@@ -310,53 +305,317 @@ int run_mission(const std::vector<std::string>& argv) {
   }
   MissionSummary s;
   report.write_and_close(mission_report_json(
-      agent_report, scenario,
-      "\"run\": " + run_settings_json(args, scenario, rate, *model, failure), &s));
+      agent_report, scenario, "\"run\": " + run_settings_json(args, scenario, rate, model, failure),
+      &s));
   print_mission_summary(s);
   std::fprintf(stderr, "mission: report %s\n", report_path.c_str());
   return failure.empty() ? 0 : 1;
 }
 
+// The seeds: --seed S (default the scenario's) and the --seeds N after it.
+std::vector<std::uint64_t> seed_list(const Args& args, const config::Scenario& scenario) {
+  const auto first = args.get_int("--seed", 0, (1LL << 53));
+  const auto n = args.get_int("--seeds", 1, 100000).value_or(1);
+  const std::uint64_t s0 = first ? static_cast<std::uint64_t>(*first) : scenario.scene.seed;
+  std::vector<std::uint64_t> seeds;
+  for (long long i = 0; i < n; ++i)
+    seeds.push_back(s0 + static_cast<std::uint64_t>(i));
+  return seeds;
+}
+
+// Writes `text` to DIR/NAME (whole-file write, the error names the file).
+void write_text(const std::filesystem::path& dir, const std::string& name,
+                const std::string& text) {
+  OutputFile f("--out", (dir / name).string());
+  f.write_and_close(text);
+}
+
+// The default: every seed in lock-step, scored; one report for all.
+int run_lockstep_missions(const Args& args, const std::string& model_path,
+                          const config::Scenario& scenario) {
+  mission::MissionSpec spec;
+  spec.scenario = scenario;
+  spec.model = load_model_if(model_path);
+  spec.agent = agent_options(args);
+  const std::string layout = args.get_or("--layout", "scenario");
+  if (layout != "scenario" && layout != "random") {
+    throw UsageError("--layout: expected scenario or random, got '" + layout + "'");
+  }
+  spec.random_layout = layout == "random";
+  spec.onboard.classify_candidates = args.has("--classify-candidates");
+  if (const auto h = args.get_double("--detector-threshold", 0.0, 5.0)) {
+    spec.onboard.detector.min_height_m = *h;
+    spec.onboard.detector.candidate_min_height_m =
+        std::min(spec.onboard.detector.candidate_min_height_m, *h);
+  }
+  spec.lockstep.threads =
+      static_cast<int>(args.get_int("--threads", 1, 256)
+                           .value_or(std::max(1u, std::thread::hardware_concurrency())));
+  if (const auto d = args.get_double("--max-duration", 1.0, 1e7)) spec.lockstep.max_duration_s = *d;
+  spec.score.match_radius_m =
+      args.get_double("--match-radius", 0.1, 100.0).value_or(spec.score.match_radius_m);
+  const std::optional<double> rate = args.get("--rate") && *args.get("--rate") != "max"
+                                         ? args.get_double("--rate", 0.01, 1000.0)
+                                         : std::nullopt;
+  const std::vector<std::uint64_t> seeds = seed_list(args, scenario);
+  const std::string report_path = args.get_or("--report", "out/mission.json");
+  const std::filesystem::path out_dir =
+      args.get_or("--out", (std::filesystem::path(report_path).parent_path() / "mission").string());
+  std::filesystem::create_directories(out_dir);
+  OutputFile report("--report", report_path);  // opened now: fails before the run
+  const bool quiet = args.has("--quiet");
+  try {
+    spec.lockstep.validate();
+    (void)mission::make_agent_setup(scenario, spec.agent);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  install_stop_flag();
+  std::fprintf(stderr,
+               "mission: scenario '%s' in lock-step, %zu seed%s from %llu, re-looks %s, %d render "
+               "thread%s%s; files in %s\n",
+               scenario.scene.name.c_str(), seeds.size(), seeds.size() == 1 ? "" : "s",
+               static_cast<unsigned long long>(seeds.front()), spec.agent.relooks ? "on" : "off",
+               spec.lockstep.threads, spec.lockstep.threads == 1 ? "" : "s",
+               rate ? (", paced at " + std::to_string(*rate) + " x real time").c_str() : "",
+               out_dir.string().c_str());
+
+  study::SurveyTally tally;
+  std::vector<study::FrocCounts> froc, gate_froc;
+  std::vector<std::pair<std::uint64_t, study::SurveyScore>> scores;
+  std::string missions_json;
+  MissionSummary pooled;
+  bool stopped = false;
+  const auto wall0 = std::chrono::steady_clock::now();
+  for (const std::uint64_t seed : seeds) {
+    const auto seed_wall0 = std::chrono::steady_clock::now();
+    std::string events;
+    std::string contacts;
+    mission::LockstepHooks hooks;
+    hooks.stop_requested = [] { return stop_requested(); };
+    const double plan_m =
+        autonomy::plan_length_m(mission::make_agent_setup(spec.scenario, spec.agent).survey);
+    auto next_progress = seed_wall0 + std::chrono::seconds(10);
+    hooks.on_batch = [&](const autonomy::Agent& agent) {
+      for (const std::string& e : const_cast<autonomy::Agent&>(agent).take_events()) {
+        char line[64];
+        std::snprintf(line, sizeof line, "t=%.1f s: ", agent.state().t_s);
+        events += line + e + "\n";
+      }
+      // pacing: mission time no faster than --rate x the wall clock
+      if (rate) {
+        const auto due =
+            seed_wall0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                             std::chrono::duration<double>(agent.state().t_s / *rate));
+        std::this_thread::sleep_until(due);
+      }
+      if (!quiet && std::chrono::steady_clock::now() >= next_progress) {
+        next_progress += std::chrono::seconds(10);
+        std::fprintf(stderr,
+                     "mission: seed %llu: %.0f s of mission, %.0f m flown (survey plan %.0f m) "
+                     "...\n",
+                     static_cast<unsigned long long>(seed), agent.state().t_s, agent.travelled_m(),
+                     plan_m);
+      }
+    };
+    hooks.on_contact = [&](const atr::Contact& c) { contacts += atr::contact_json(c) + "\n"; };
+    mission::SeedRun r = mission::run_seed(spec, seed, hooks);
+    stopped = r.run.stopped;
+    const double seed_wall_s = seconds_since(seed_wall0);
+    // the agent's report and the mission's (as --realtime), with the survey score
+    AgentRunInfo info;
+    info.lockstep = true;
+    info.threshold = r.setup.params.margin_threshold;
+    info.relooks = r.setup.params.relooks;
+    info.survey_plan_m = autonomy::plan_length_m(r.setup.survey);
+    info.stopped = r.run.stopped;
+    info.contacts_received = r.run.contacts.size();
+    const std::string agent_report = agent_report_json(*r.agent, info);
+    MissionSummary summary;
+    const std::string mission_json = mission_report_json(
+        agent_report, r.scenario,
+        "\"seed\": " + std::to_string(seed) + ",\n  \"survey\": " + survey_score_json(r.score),
+        &summary);
+    missions_json += (missions_json.empty() ? "" : ",\n") + mission_json;
+    pooled = add_summaries(pooled, summary);
+    tally.add(r.score);
+    study::add_froc(froc, r.detector_froc);
+    if (!r.gate_froc.empty()) study::add_froc(gate_froc, r.gate_froc);
+    scores.emplace_back(seed, r.score);
+    const std::string stem = "seed_" + std::to_string(seed);
+    write_text(out_dir, stem + "_contacts.jsonl", contacts);
+    write_text(out_dir, stem + "_agent.log", events);
+    write_text(out_dir, stem + "_candidates.csv", candidates_csv(r.run.candidates));
+    if (!quiet) {
+      std::fprintf(stderr,
+                   "mission: seed %llu: %zu pings, %zu contacts (%llu detections identified as "
+                   "clutter), %.0f s of mission in %.1f s wall (%.0f x real time; classifying "
+                   "%.1f s)\n",
+                   static_cast<unsigned long long>(seed), r.run.pings.size(), r.run.contacts.size(),
+                   static_cast<unsigned long long>(r.run.onboard.clutter), r.run.mission_s,
+                   seed_wall_s, r.run.mission_s / std::max(seed_wall_s, 1e-9),
+                   r.run.onboard.classify_total_s);
+      print_mission_summary(summary);
+    }
+    if (stopped) break;
+  }
+  const std::vector<study::SurveyRow> rows = study::survey_rows(tally);
+  write_text(out_dir, "survey.csv", study::survey_rows_csv(rows));
+  write_text(out_dir, "survey_targets.csv", survey_targets_csv(scores));
+  write_text(out_dir, "survey_false_contacts.csv", survey_false_contacts_csv(scores));
+  write_text(out_dir, "detector_froc.csv", study::froc_csv(froc));
+  if (!gate_froc.empty()) write_text(out_dir, "gate_froc.csv", study::froc_csv(gate_froc));
+  json::Writer settings;
+  settings.begin_object();
+  settings.field("mode", "lockstep").field("scenario", scenario.scene.name);
+  settings.field("relooks", spec.agent.relooks).field("relook_all", spec.agent.relook_all);
+  settings.field("model", model_path).field("stopped", stopped);
+  settings.field("match_radius_m", spec.score.match_radius_m, 6);
+  settings.field("layout", layout);
+  settings.end_object();
+  std::string text = "{\n  \"run\": " + settings.str() +
+                     ",\n  \"survey\": " + survey_rows_json(rows) + ",\n  \"missions\": [\n" +
+                     missions_json + "]\n}\n";
+  report.write_and_close(text);
+  print_survey_rows(rows);
+  std::fprintf(stderr, "mission: %zu mission%s in %.1f s wall; report %s, tables in %s\n",
+               scores.size(), scores.size() == 1 ? "" : "s", seconds_since(wall0),
+               report_path.c_str(), out_dir.string().c_str());
+  return stopped ? 1 : 0;
+}
+
+int run_mission(const std::vector<std::string>& argv) {
+  const Args args(argv, {{"--model"},
+                         {"--realtime", false},
+                         {"--rate"},
+                         {"--seed"},
+                         {"--seeds"},
+                         {"--threads"},
+                         {"--match-radius"},
+                         {"--layout"},
+                         {"--classify-candidates", false},
+                         {"--detector-threshold"},
+                         {"--threshold"},
+                         {"--no-relook", false},
+                         {"--relook-all", false},
+                         {"--report"},
+                         {"--out"},
+                         {"--line-spacing"},
+                         {"--pass-range"},
+                         {"--area"},
+                         {"--area-margin"},
+                         {"--max-relooks"},
+                         {"--relook-timing"},
+                         {"--relook-budget"},
+                         {"--max-duration"},
+                         {"--quiet", false}});
+  if (args.positionals().size() > 1) throw UsageError("expected at most one SCENARIO.yaml");
+  std::optional<std::string> model = args.get("--model");
+  if (model && !is_default_model(*model) && !std::filesystem::exists(*model)) {
+    throw UsageError("--model " + *model + ": no such file");
+  }
+  const std::optional<std::string> scenario_path =
+      args.positionals().empty() ? std::nullopt : std::optional(args.positionals()[0]);
+  const config::Scenario scenario = load_scenario_or_default(scenario_path);
+  if (!model || is_default_model(*model)) {
+    install_stop_flag();
+    model = ensure_default_model(args.has("--quiet"));
+  }
+  if (args.has("--realtime")) {
+    for (const char* o : {"--seed", "--seeds", "--threads", "--match-radius", "--layout",
+                          "--classify-candidates"}) {
+      if (args.has(o))
+        throw UsageError(std::string(o) + " applies to lock-step missions, not --realtime");
+    }
+    return run_realtime(args, *model, scenario_path, scenario);
+  }
+  return run_lockstep_missions(args, *model, scenario);
+}
+
 }  // namespace
 
 const Command kMissionCommand{
-    "mission", "the autonomy loop for a scenario: emulator + onboard + agent, with a report",
-    R"(usage: sonarloop mission [SCENARIO.yaml] --model MODEL [options]
+    "mission", "the autonomy loop for a scenario: emulator + onboard + agent, scored, over seeds",
+    R"(usage: sonarloop mission [SCENARIO.yaml | NAME] [--model MODEL] [options]
 
-Runs the whole loop of docs/autonomy.md on 127.0.0.1 (free ports), as three child processes of
-this binary: the emulator (`run SCENARIO --pose-from udp:.. --udp .. --can socketcand:..`), the
-onboard consumer (`onboard --listen .. --model MODEL --contacts udp:..`) and the example agent
-(`autonomy`), which flies the survey and re-looks uncertain contacts. When the agent ends (the
-survey and its re-looks done), the others are stopped; the agent's objects are matched against
-the scenario's targets (within 3 m) and the summary printed and written as JSON: targets
-detected, identified, mine / non-mine right, false contacts, re-looks (aspect change, pass
-range, extra distance and time, latency from the ping abeam the object to the new waypoint).
-Ctrl-C (or SIGTERM) stops the agent, then the others, and still writes the report. Each child's
-output goes to DIR/NAME.log. In accelerated time the loop's latencies (UDP, the emulator's
-0.1 s pose delay) grow in mission time by the rate: docs/autonomy.md.
+Flies the whole loop of docs/autonomy.md: the emulator renders each ping from where the example
+agent steers, the onboard consumer detects and classifies, the agent surveys the scenario's area
+(a lawnmower) and re-looks the contacts it is unsure of. Then what the vehicle received, the
+contact stream, is scored against the scenario's truth (docs/autonomy.md, "Survey scoring"):
+probability of detection of the targets the swath covered, identification and mine / non-mine of
+those detected, false contacts per km² and per target, per seabed kind and per target type with
+95 % Wilson intervals, and the detector's FROC from every candidate it considered.
+
+Lock-step (the default): the emulator's renderer, the onboard consumer and the agent run in this
+process, advanced together in simulation time (mission/lockstep.h): no ping is ever dropped, and
+the report is a function of the scenario, the seed and the options only, the same at any --rate,
+on any number of threads and on a loaded machine. Several seeds (--seeds N) fly the same survey
+over N realisations of the seabed, its rocks, the speckle and the navigation errors; --layout
+random also draws the targets afresh per seed (surveys a model was not tuned on).
+
+--realtime: the same loop as three child processes of this binary on 127.0.0.1 (free ports),
+each on the wall clock as a vehicle's would be: the emulator (`run SCENARIO --pose-from udp:..
+--udp .. --can socketcand:..`), the onboard consumer (`onboard --listen .. --contacts udp:..`)
+and the agent (`autonomy`); their output goes to DIR/NAME.log. Not reproducible: when a pose
+reaches the emulator and a contact the agent depend on the scheduler, and a ping rendered late
+is dropped. One seed, the agent's objects scored.
+
+Writes the JSON report (--report) and, in lock-step, into --out DIR: survey.csv (the pooled
+table), survey_targets.csv (every target of every seed), survey_false_contacts.csv,
+detector_froc.csv (detection against false contacts over the detector's threshold),
+gate_froc.csv (over the contact gate's, with a model that has one), and per seed
+seed_S_contacts.jsonl (the contact stream), seed_S_candidates.csv (every detector candidate
+with its fate and features) and seed_S_agent.log (the agent's decisions). Ctrl-C (or SIGTERM)
+stops the mission and still writes the report ("stopped": true).
 
 options:
-  --model MODEL          the onboard consumer's model (`sonarloop train`), required
-  --rate X               accelerated time for all three (default 10)
+  --model MODEL          the onboard consumer's model (`sonarloop train`); default (or none
+                         given): the default model, trained once from the documented recipe on
+                         the built-in survey scenarios and cached (tools/default_model.h; about
+                         10 minutes the first time)
+  --seeds N              lock-step: fly N seeds (default 1), from --seed S (default: the
+                         scenario's seed)
+  --layout L             lock-step: scenario (the scenario's targets, default) or random (the
+                         same types drawn anywhere in the survey area, 25 m apart, per seed)
+  --threads N            lock-step: render threads (default: all cores)
+  --rate X               lock-step: pace the loop at X times real time (default: as fast as it
+                         renders; the report does not change). --realtime: the children's rate
+                         (default 10)
+  --realtime             the three processes on the wall clock (see above)
+  --detector-threshold H the detector's operating threshold, the smallest object height in
+                         metres measured from its shadow (default 0.14; atr/detector.h)
+  --classify-candidates  lock-step: classify the detector's candidates below its threshold too
+                         (in seed_S_candidates.csv; slower)
+  --match-radius M       lock-step: a contact within M of a target is it (default 3)
   --threshold T          the agent's re-look margin threshold (default 0.05)
   --no-relook            survey only (the baseline of the table)
   --relook-all           re-look non-mine objects too (default: only where the doubt could
                          change the mine / non-mine decision; see sonarloop autonomy --help)
-  --max-relooks N        the agent's re-look budget (default: no limit)
+  --relook-timing T      after-survey (default: the survey first, then the objects still
+                         uncertain, cheapest to reach first) or immediate (each at once, the
+                         survey cut and resumed)
+  --relook-budget F      after the survey, re-looks take at most F times the survey's planned
+                         time (default 0.5: the mission at most 1.5 times the survey); none: no
+                         limit
+  --max-relooks N        the agent's re-look budget in re-looks (default: no limit)
   --line-spacing M       lawnmower line spacing (default 40)
   --pass-range M         re-look pass range (default 25)
   --area N0,E0,N1,E1     the survey rectangle (default: the seabed less --area-margin)
   --area-margin M        (default 50)
   --max-duration S       stop the agent after S mission seconds
   --report FILE          the JSON report (default out/mission.json)
-  --out DIR              the children's logs and reports (default: FILE's folder/mission_logs)
+  --out DIR              lock-step: the tables and per-seed files (default: FILE's
+                         folder/mission); --realtime: the children's logs and reports (default:
+                         FILE's folder/mission_logs)
   --quiet                no progress lines
 
 examples:
   sonarloop dataset --out out/chips7 --count 300 --classes manta,rockan,cylinder,large_cuboid,hemisphere,small_hemisphere,box
   sonarloop train out/chips7 --out out/atr7.slpca --aspect-sectors 8 --p 10
-  sonarloop mission config/mission_20.yaml --model out/atr7.slpca --rate 10 --report out/mission.json
-  sonarloop mission config/mission_20.yaml --model out/atr7.slpca --no-relook --report out/base.json
+  sonarloop mission config/mission_20.yaml --model out/atr7.slpca --report out/mission.json
+  sonarloop mission config/mission_20.yaml --model out/atr7.slpca --no-relook --seeds 5
+  sonarloop mission config/survey_rocky.yaml --model out/atr7.slpca --no-relook --seeds 5 --layout random
+  sonarloop mission config/mission_20.yaml --model out/atr7.slpca --realtime --rate 5
 )",
     run_mission, 19};
 SONARLOOP_REGISTER_COMMAND(kMissionCommand);

@@ -188,6 +188,7 @@ int run_onboard(const std::vector<std::string>& argv) {
                          {"--search-cols"},
                          {"--stats-json"},
                          {"--look-radius"},
+                         {"--detector-threshold"},
                          {"--origin"},
                          {"--scenario"},
                          {"--quiet", false},
@@ -223,6 +224,10 @@ int run_onboard(const std::vector<std::string>& argv) {
       static_cast<int>(args.get_int("--search-cols", 0, 100).value_or(options.search.cols));
   options.look_radius_m =
       args.get_double("--look-radius", 0.0, 100.0).value_or(options.look_radius_m);
+  if (const auto h = args.get_double("--detector-threshold", 0.0, 5.0)) {
+    options.detector.min_height_m = *h;
+    options.detector.candidate_min_height_m = std::min(options.detector.candidate_min_height_m, *h);
+  }
   options.frame_origin = frame_origin(args);
   const auto stats_json = args.get("--stats-json");
   // opened now: an unwritable place fails before the run, not after it
@@ -314,6 +319,8 @@ options:
   --search-rows N        alignment search: chip windows tried up to N pixels along track
                          either side of the detector's centre (default 6)
   --search-cols N        the same in range (default 10)
+  --detector-threshold H  the detector's operating threshold: the smallest object height, in
+                         metres, measured from its shadow (default 0.14; atr/detector.h)
   --look-radius M        multi-look fusion: a classified object within M metres of one seen
                          before (another pass or aspect) is fused with it, and its report adds
                          looks, object, fused_class and fused_mine_like (default 2; 0: off)

@@ -15,6 +15,7 @@
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
 #include "tools/progress.h"
+#include "tools/survey_training.h"
 
 namespace sonarloop::tools {
 namespace {
@@ -55,6 +56,9 @@ struct StageProgress {
 };
 
 int run_train(const std::vector<std::string>& argv) {
+  for (const std::string& a : argv) {
+    if (a == "--surveys" || a.rfind("--surveys=", 0) == 0) return run_survey_train(argv);
+  }
   const Args args(argv, {{"--out"},
                          {"--p"},
                          {"--aspect-sectors"},
@@ -141,6 +145,7 @@ const Command kTrainCommand{
     "train",
     "train the PCA (eigen-subspace) classifier on PNG or JPEG chips, one subfolder per class",
     R"(usage: sonarloop train CHIPS_DIR --out MODEL [options]
+       sonarloop train --surveys SCENARIOS --out MODEL [survey options]
 
 Trains the eigen-subspace classifier of Pailhas, Petillot & Capus (2010), Section 3.2: for each
 class, every chip is normalised by its own mean and standard deviation (eq. 9), the class mean
@@ -199,12 +204,39 @@ open-set rejection (ours; default off, as the paper):
 
 A progress bar shows on stderr when training takes more than a second.
 
+training on surveys (--surveys; mission/survey_training.h, docs/autonomy.md): instead of a chip
+folder, the model learns from what the onboard consumer sees on surveys: lock-step surveys of the
+scenarios' seabeds (files, or built-in names: survey_flat, survey_ripples, survey_clutter,
+survey_rocky, mission_20) with the targets drawn afresh, in two passes. Pass 1 cuts the chips of
+every target the detector found (centred on the truth) and of its false alarms (a "clutter"
+class: hard negatives) and trains the PCA model on them; its detections' features fit the
+detection gate. Pass 2, other surveys flown with that model, fits the classification gate on
+the classified detections (atr/contact_gate.h). The onboard consumer then reports only what the
+gates pass. Training seeds start at --seed (default 100000); missions are reported on others.
+  --surveys A,B,...      the training scenarios (their seabeds; their targets are replaced)
+  --surveys-per-scenario N  surveys of each per pass (default 2)
+  --per-type N           targets of each class per survey (default 8)
+  --classes LIST         the target types (default: the seven of Fig. 13)
+  --min-separation M     between targets (default 15)
+  --area-margin M        the survey area: the seabed less this (default 50)
+  --max-clutter N        clutter chips kept per survey, a uniform sample (default 400)
+  --keep-targets F       the classification gate keeps this fraction of the training targets,
+                         a target when one of its detections passes (default 0.95; the
+                         detection gate keeps 0.99, or F if larger)
+  --p N, --aspect-sectors N  as above (defaults 10 and 8)
+  --gate-rows PREFIX     also write each gate's training rows (features, label, target) to
+                         PREFIX_detection.csv and PREFIX_classification.csv
+  --seed S, --threads N
+The default model of `sonarloop mission` is this with its defaults on the five built-in
+scenarios (tools/default_model.h): about 10 minutes on 2 cores.
+
 examples:
   sonarloop train out/chips --out out/atr.slpca
   sonarloop train out/chips --out out/atr8.slpca --aspect-sectors 8 --p 10
   sonarloop train out/chips --out out/atr_crop.slpca --crop 0.4 --reject-quantile 0.95
   sonarloop train ~/survey/chips --out survey.slpca --size 64x64 --skip-bad-chips \
       --mine-like mine,torpedo --height mine=0.5,torpedo=0.53,rock=0.8
+  sonarloop train --surveys survey_flat,survey_clutter,survey_rocky --out out/surveys.slpca
 )",
     run_train, 60};
 SONARLOOP_REGISTER_COMMAND(kTrainCommand);

@@ -11,9 +11,12 @@
 //   latency               per re-look, mission seconds from the ping abeam the object (the
 //                         vehicle's track sample where its first look was abeam) to the re-look
 //                         leg's insertion (the new waypoint); wall seconds = that / rate
+#include <span>
 #include <string>
 
+#include "atr/onboard_pipeline.h"
 #include "config/loader/scenario_loader.h"
+#include "study/survey_score.h"
 
 namespace sonarloop::tools {
 
@@ -37,5 +40,31 @@ std::string mission_report_json(const std::string& agent_report, const config::S
 
 // A few lines for the console.
 void print_mission_summary(const MissionSummary& s);
+
+// Several missions' summaries summed (their times and distances too; the means of the re-looks'
+// geometry weighted by their passes, the latency maximum kept).
+MissionSummary add_summaries(const MissionSummary& a, const MissionSummary& b);
+
+// The summary as a JSON object (the "summary" of the report; with several missions, pooled).
+std::string mission_summary_json(const MissionSummary& s);
+
+// One survey's score (study/survey_score.h) as a JSON object: the covered area, every target's
+// outcome, every false contact.
+std::string survey_score_json(const study::SurveyScore& s);
+
+// The pooled tables (study/survey_rows) as a JSON array of objects.
+std::string survey_rows_json(std::span<const study::SurveyRow> rows);
+
+// Console lines: the pooled "all" and per-seabed rows.
+void print_survey_rows(std::span<const study::SurveyRow> rows);
+
+// Every candidate of the detector with its fate and (when classified) class, as CSV.
+std::string candidates_csv(std::span<const atr::CandidateReport> candidates);
+
+// The per-target outcomes and the false contacts of several surveys as CSV (header first), each
+// row with its seed.
+std::string survey_targets_csv(std::span<const std::pair<std::uint64_t, study::SurveyScore>> s);
+std::string survey_false_contacts_csv(
+    std::span<const std::pair<std::uint64_t, study::SurveyScore>> s);
 
 }  // namespace sonarloop::tools

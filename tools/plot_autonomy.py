@@ -5,8 +5,9 @@ usage: tools/plot_autonomy.py --out docs/autonomy REPORT.json[=LABEL] ...
 
 Prints the with/without table (Markdown) of the reports and writes OUT/accuracy_vs_time.png:
 the fraction of targets identified, confirmed right and called mine / non-mine right against
-the mission's duration, one point per report (e.g. one per re-look threshold, and the survey
-without re-looks).
+the mission's duration, one point per report (e.g. one per re-look setting, and the survey
+without re-looks). A lock-step report of several seeds counts them all (its pooled "summary";
+mission times are then per mission, the mean over the seeds).
 """
 import argparse
 import json
@@ -22,10 +23,19 @@ def load(spec):
     path, _, label = spec.partition("=")
     with open(path) as f:
         report = json.load(f)
+    agent = report["agent"] if "agent" in report else report["missions"][0]["agent"]
     if not label:
         run = report.get("run", {})
         label = "no re-looks" if not run.get("relooks", True) else (
-            "threshold %g" % report["agent"]["threshold"])
+            "threshold %g" % agent["threshold"])
+    # per mission: the pooled times over the missions
+    s = dict(report["summary"])
+    n = len(report.get("missions", [])) or 1
+    for key in ("mission_time_s", "distance_m", "relook_distance_m", "relook_time_s",
+                "wall_time_s"):
+        s[key] = s[key] / n
+    s["missions"] = n
+    report = dict(report, summary=s)
     return label, report
 
 
@@ -45,13 +55,15 @@ def table(reports):
             s["relooks"], s["relooks_passed"], s["relooks_second_look"])),
         ("aspect change / pass range of re-looks", lambda s: "%.1f° / %.1f m" % (
             s["aspect_change_mean_deg"], s["pass_range_mean_m"]) if s["relooks_passed"] else "-"),
-        ("mission time (distance)", lambda s: "%.0f s (%.0f m)" % (
+        ("mission time (distance), per mission", lambda s: "%.0f s (%.0f m)" % (
             s["mission_time_s"], s["distance_m"])),
-        ("extra distance and time on re-looks", lambda s: "%.0f m, %.0f s" % (
+        ("extra distance and time on re-looks, per mission", lambda s: "%.0f m, %.0f s" % (
             s["relook_distance_m"], s["relook_time_s"])),
         ("latency ping abeam -> new waypoint, mean (max)", lambda s: "%.1f s (%.1f s)" % (
             s["latency_mean_s"], s["latency_max_s"]) if s["relooks"] else "-"),
-        ("wall time", lambda s: "%.0f s" % s["wall_time_s"]),
+        ("missions (seeds)", lambda s: "%d" % s["missions"]),
+        ("wall time", lambda s: "%.0f s" % s["wall_time_s"] if s["wall_time_s"] else
+         "- (lock-step)"),
     ]
     out = ["| | " + " | ".join(label for label, _ in reports) + " |",
            "|---|" + "---|" * len(reports)]

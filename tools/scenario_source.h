@@ -9,8 +9,9 @@
 
 namespace sonarloop::tools {
 
-// Loads `path` (scene and sonar), or the embedded default scenario if path is empty. Throws
-// config::ConfigError.
+// Loads `path` (scene and sonar), or the embedded default scenario if path is empty; a path that
+// is no file but the name of a built-in scenario (config/default_scenario.h: mission_20,
+// survey_flat, ...) loads that one. Throws config::ConfigError.
 config::Scenario load_scenario_or_default(const std::optional<std::string>& path);
 
 // The scene part of load_scenario_or_default(path).

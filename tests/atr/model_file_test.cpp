@@ -88,11 +88,18 @@ void fix_crc(std::vector<std::uint8_t>& b) {
   put_le32(b, b.size() - 4, crc32(std::span(b).first(b.size() - 4)));
 }
 
-// The bytes an older version (1 or 2) would have written for a model without groups: version 2
-// has no class height (and a 0 flags byte), version 1 neither the pre-processing record nor the
-// reject and typical distances.
+// The bytes an older version (1 to 3) would have written for a model without groups, clutter
+// classes or gates: version 3 has no gate count; version 2 no class height either (and a 0
+// flags byte); version 1 neither the pre-processing record nor the reject and typical distances.
 std::vector<std::uint8_t> downgrade(const Model& m, int version) {
   const auto v3 = encode_model(m);
+  if (version == 3) {
+    std::vector<std::uint8_t> out(v3.begin(), v3.end() - 8);  // without the gate count and CRC
+    out[6] = 3;
+    out.insert(out.end(), 4, 0);
+    fix_crc(out);
+    return out;
+  }
   std::vector<std::uint8_t> out(v3.begin(), v3.begin() + (version >= 2 ? 60 : 36));
   out[6] = static_cast<std::uint8_t>(version);
   std::size_t at = 60;
@@ -116,7 +123,7 @@ std::vector<std::uint8_t> downgrade(const Model& m, int version) {
       body += 16 + 8 + 8 * sub.rank() + 4 * m.feature_count() * (1 + sub.rank());
     copy(body);
   }
-  REQUIRE(at + 4 == v3.size());
+  REQUIRE(at + 8 == v3.size());  // the gate count (0) and the CRC remain
   out.insert(out.end(), 4, 0);
   fix_crc(out);
   return out;
@@ -181,8 +188,9 @@ TEST_CASE("model file: the byte layout is the documented one") {
   double h = 0.0;
   std::memcpy(&h, b.data() + 82, 8);  // height_m (little-endian host)
   CHECK(h == 0.4);
-  // size: header + pre-processing + per class (name record + subspaces) + crc
-  std::size_t expect = 36 + 24 + 4;
+  // size: header + pre-processing + per class (name record + subspaces) + gate count + crc
+  CHECK(le32(b, b.size() - 8) == 0);  // no gates
+  std::size_t expect = 36 + 24 + 4 + 4;
   for (const auto& c : m.classes) {
     expect += 2 + c.name.size() + 2 + 4 + 8 + 8;
     for (const auto& s : c.subspaces) {
@@ -209,15 +217,15 @@ TEST_CASE("model file: bad magic, version, truncation, trailing bytes and corrup
                     Catch::Contains("bad magic"));
 
   b = good;
-  b[6] = 4;
-  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("unsupported format version 4") &&
-                                              Catch::Contains("reads versions 1 to 3"));
+  b[6] = 5;
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("unsupported format version 5") &&
+                                              Catch::Contains("reads versions 1 to 4"));
   // class metadata: an unknown flag, a height out of range, a height said unknown but not 0
   const auto single = encode_model(trained(false));  // first class cuboid, height at 82
   b = single;
-  b[69] = 2;
+  b[69] = 4;
   fix_crc(b);
-  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("flags byte 2"));
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("flags byte 4"));
   b = single;
   const double bad_h = -1.0;
   std::memcpy(b.data() + 82, &bad_h, 8);
@@ -365,4 +373,63 @@ TEST_CASE("model file: class metadata round-trips; version 2 files still load") 
   for (const auto& c : old.classes)
     CHECK_FALSE(c.height_m);
   CHECK(old.classes[0].reject_distance == m.classes[0].reject_distance);
+}
+
+TEST_CASE("model file: version 4 keeps clutter classes and contact gates; version 3 loads") {
+  Model m = trained(false);
+  m.classes[2].clutter = true;  // "rock": not mine-like
+  LogisticGate d;
+  d.stage = GateStage::kDetection;
+  const std::size_t nd = gate_feature_count(GateStage::kDetection);
+  for (std::size_t i = 0; i < nd; ++i) {
+    d.mean.push_back(0.5 * static_cast<double>(i));
+    d.scale.push_back(1.0 + static_cast<double>(i));
+    d.weights.push_back(-0.25 * static_cast<double>(i));
+  }
+  d.bias = 0.75;
+  d.threshold = 0.01;
+  LogisticGate c = d;
+  c.stage = GateStage::kClassification;
+  c.form = GateForm::kQuadratic;
+  const std::size_t nc = gate_feature_count(GateStage::kClassification);
+  c.mean.resize(nc, 2.0);
+  c.scale.resize(nc, 3.0);
+  c.weights.resize(gate_term_count(nc, GateForm::kQuadratic), 0.125);
+  c.threshold = 0.2;
+  m.detection_gate = d;
+  m.classification_gate = c;
+  const auto bytes = encode_model(m);
+  const Model back = decode_model(bytes, "v4");
+  CHECK(back.classes[2].clutter);
+  CHECK_FALSE(back.classes[0].clutter);
+  REQUIRE(back.detection_gate);
+  REQUIRE(back.classification_gate);
+  CHECK(back.detection_gate->weights == d.weights);
+  CHECK(back.detection_gate->mean == d.mean);
+  CHECK(back.detection_gate->scale == d.scale);
+  CHECK(back.detection_gate->bias == d.bias);
+  CHECK(back.detection_gate->threshold == d.threshold);
+  CHECK(back.classification_gate->weights == c.weights);
+  CHECK(back.classification_gate->form == GateForm::kQuadratic);
+  CHECK(back.detection_gate->form == GateForm::kLinear);
+  CHECK(back.classification_gate->threshold == c.threshold);
+  // a gate of the wrong size, or a clutter class that is mine-like, is refused
+  Model bad = m;
+  bad.classification_gate->weights.pop_back();
+  CHECK_THROWS_AS(encode_model(bad), std::runtime_error);
+  bad = m;
+  bad.classes[2].mine_like = true;
+  CHECK_THROWS_AS(encode_model(bad), std::runtime_error);
+  // version 3: no gates, no clutter flag (its flags byte allows the height bit only)
+  const Model plain = trained(false);
+  std::uint16_t version = 0;
+  const Model v3 = decode_model(downgrade(plain, 3), "v3", &version);
+  CHECK(version == 3);
+  expect_same(plain, v3);
+  CHECK_FALSE(v3.detection_gate);
+  CHECK_FALSE(v3.classification_gate);
+  auto flagged = downgrade(plain, 3);
+  flagged[69] |= 2;  // the clutter bit in a version 3 file
+  fix_crc(flagged);
+  CHECK_THROWS_WITH(decode_model(flagged, "v3"), Catch::Contains("flags byte"));
 }

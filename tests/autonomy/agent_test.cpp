@@ -40,10 +40,60 @@ double along(Point2 object, const VehicleState& s) {
   return rel.north_m * d.north_m + rel.east_m * d.east_m;
 }
 
+// A survey with one object: its contacts reported 3 s after each pass within the swath (at most
+// max_reports), "manta" and "rockan" in turn when `alternate` (two looks that disagree leave it
+// uncertain); flown until done (or 4000 s) over a flat seabed at 22.5 m.
+struct Flight {
+  double survey_end_s = -1.0;  // when the survey's last leg ended
+  int reported = 0;
+};
+
+Flight fly_survey(Agent& agent, Point2 object, bool alternate = true, int max_reports = 3) {
+  Flight f;
+  std::uint64_t next_id = 1;
+  double due_s = -1.0;
+  double previous_along = along(object, agent.state());
+  while (!agent.mission_done() && agent.state().t_s < 4000) {
+    const bool surveying = !agent.plan().done() && agent.plan().current().kind == LegKind::kSurvey;
+    agent.step(0.5, 22.5);
+    const VehicleState& s = agent.state();
+    if (surveying && (agent.plan().done() || agent.plan().current().kind != LegKind::kSurvey) &&
+        f.survey_end_s < 0) {
+      f.survey_end_s = s.t_s;
+    }
+    const double a = along(object, s);
+    if (previous_along > 0 && a <= 0 && distance_m(s.position, object) < 45.0 &&
+        f.reported < max_reports)
+      due_s = s.t_s + 3.0;
+    previous_along = a;
+    if (due_s > 0 && s.t_s >= due_s) {
+      atr::Contact c = contact_seen(next_id++, object, s);
+      if (alternate && next_id % 2 == 1) {  // the second, fourth ... look: the runner-up first
+        c.class_name = "rockan";
+        c.scores = {{"manta", 40.4}, {"rockan", 40.0}};
+        c.runner_up = "manta";
+      }
+      agent.on_contact(c);
+      ++f.reported;
+      due_s = -1.0;
+    }
+  }
+  return f;
+}
+
+// An agent on a 100 m leg north from the origin, 20 s into it.
+Agent one_leg_agent(const AgentParams& p) {
+  Agent agent(p, {Leg{{0, 0}, {100, 0}}}, VehicleState{});
+  for (int i = 0; i < 20; ++i)
+    agent.step(1.0, std::nullopt);
+  return agent;
+}
+
 }  // namespace
 
-TEST_CASE("an uncertain contact is re-looked from ~90 degrees and confirmed") {
+TEST_CASE("immediate: an uncertain contact is re-looked from ~90 degrees and confirmed") {
   AgentParams p;
+  p.relook_timing = RelookTiming::kImmediate;
   p.margin_threshold = 0.05;  // the contacts' margin is 0.01: uncertain
   const SurveyArea area{{-100, -60}, {100, 60}};
   p.bounds = area;
@@ -53,25 +103,7 @@ TEST_CASE("an uncertain contact is re-looked from ~90 degrees and confirmed") {
   Agent agent(p, lawnmower(area, 40.0), start);
   const Point2 object{0.0, -20.0};    // 20 m to starboard of the first line (east -40)
   const double report_delay_s = 3.0;  // the onboard consumer's latency after the pass
-  std::uint64_t next_id = 1;
-  double due_s = -1.0;
-  int reported = 0;
-  double previous_along = along(object, agent.state());
-  while (!agent.mission_done() && agent.state().t_s < 4000) {
-    agent.step(0.5, 22.5);  // a flat seabed at 22.5 m: altitude 7.5 m at depth 15
-    const VehicleState& s = agent.state();
-    const double a = along(object, s);
-    const double range = distance_m(s.position, object);
-    // abeam within the swath: the onboard consumer will report it
-    if (previous_along > 0 && a <= 0 && range < 45.0 && reported < 2)
-      due_s = s.t_s + report_delay_s;
-    previous_along = a;
-    if (due_s > 0 && s.t_s >= due_s) {
-      agent.on_contact(contact_seen(next_id++, object, s));
-      ++reported;
-      due_s = -1.0;
-    }
-  }
+  (void)fly_survey(agent, object, false, 2);
   CHECK(agent.mission_done());
   CHECK(agent.state().depth_m == Approx(15.0).margin(0.01));
   REQUIRE(agent.objects().size() == 1);
@@ -98,10 +130,7 @@ TEST_CASE("an uncertain contact is re-looked from ~90 degrees and confirmed") {
 TEST_CASE("without re-looks the object keeps its uncertain first decision") {
   AgentParams p;
   p.relooks = false;
-  VehicleState start;
-  Agent agent(p, {Leg{{0, 0}, {100, 0}}}, start);
-  for (int i = 0; i < 20; ++i)
-    agent.step(1.0, std::nullopt);
+  Agent agent = one_leg_agent(p);
   agent.on_contact(contact_seen(1, {30.0, 20.0}, agent.state()));
   CHECK(agent.relooks().empty());
   REQUIRE(agent.objects().size() == 1);
@@ -126,11 +155,9 @@ TEST_CASE("an object non-mine either way is not re-looked, unless every doubt is
   };
   for (const bool relook_all : {false, true}) {
     AgentParams p;
+    p.relook_timing = RelookTiming::kImmediate;
     p.relook_mine_relevant_only = !relook_all;
-    VehicleState start;
-    Agent agent(p, {Leg{{0, 0}, {100, 0}}}, start);
-    for (int i = 0; i < 20; ++i)
-      agent.step(1.0, std::nullopt);
+    Agent agent = one_leg_agent(p);
     agent.on_contact(rock_seen(agent.state()));
     REQUIRE(agent.objects().size() == 1);
     CHECK(agent.objects()[0].decision.state == FinalState::kUncertain);
@@ -140,12 +167,80 @@ TEST_CASE("an object non-mine either way is not re-looked, unless every doubt is
   // a mine-like uncertain object is re-looked by default (the first test case), and so is a
   // non-mine one whose mine margin is itself below the threshold
   AgentParams p;
-  VehicleState start;
-  Agent agent(p, {Leg{{0, 0}, {100, 0}}}, start);
-  for (int i = 0; i < 20; ++i)
-    agent.step(1.0, std::nullopt);
+  p.relook_timing = RelookTiming::kImmediate;
+  Agent agent = one_leg_agent(p);
   atr::Contact close = rock_seen(agent.state());
   close.mine_distance = 41.0;  // mine margin 0.025 < 0.05
   agent.on_contact(close);
   CHECK(agent.relooks().size() == 1);
+}
+
+TEST_CASE("after the survey: the survey is flown to its end, then the uncertain object") {
+  AgentParams p;
+  p.margin_threshold = 0.05;  // the contacts' margin is 0.01: uncertain
+  const SurveyArea area{{-100, -60}, {100, 60}};
+  p.bounds = area;
+  VehicleState start;
+  start.position = {-100, -40};
+  start.depth_m = 15.0;
+  const std::vector<Leg> survey = lawnmower(area, 40.0);
+  Agent agent(p, survey, start);
+  const Point2 object{0.0, -20.0};
+  const Flight f = fly_survey(agent, object);
+  CHECK(agent.mission_done());
+  REQUIRE(agent.relooks().size() == 1);
+  const RelookRecord& r = agent.relooks()[0];
+  // inserted once the survey was done: after the vehicle reached the last line's end
+  CHECK(r.inserted_t_s >= f.survey_end_s - 1.0);
+  CHECK(r.passed);
+  CHECK(r.second_look);
+  CHECK(degrees(heading_difference_rad(r.pass_heading_rad, r.first_heading_rad)) ==
+        Approx(90.0).margin(5.0));
+  // the survey's lines saw it twice (lines 20 m either side), the re-look a third time
+  REQUIRE(agent.objects().size() == 1);
+  CHECK(agent.objects()[0].looks.size() >= 2);
+  // the re-look's time is the detour, within the (unlimited) budget
+  CHECK(agent.detour_time_s() > 0.0);
+}
+
+TEST_CASE("after the survey: a re-look that does not fit the budget is not flown") {
+  AgentParams p;
+  p.margin_threshold = 0.05;
+  p.relook_budget_s = 30.0;  // a re-look costs a few minutes
+  const SurveyArea area{{-100, -60}, {100, 60}};
+  p.bounds = area;
+  VehicleState start;
+  start.position = {-100, -40};
+  start.depth_m = 15.0;
+  Agent agent(p, lawnmower(area, 40.0), start);
+  (void)fly_survey(agent, {0.0, -20.0});
+  CHECK(agent.mission_done());
+  CHECK(agent.relooks().empty());
+  REQUIRE(agent.objects().size() == 1);
+  CHECK(agent.objects()[0].relook_over_budget);
+  CHECK(agent.detour_time_s() == 0.0);
+  bool said = false;
+  for (const std::string& e : agent.take_events())
+    said = said || e.find("budget") != std::string::npos;
+  CHECK(said);
+}
+
+TEST_CASE("an object the gate doubts is uncertain however sure its class") {
+  AgentParams p;
+  p.relooks = false;
+  Agent agent = one_leg_agent(p);
+  atr::Contact c = contact_seen(1, {30.0, 20.0}, agent.state());
+  c.runner_up_distance = 48.0;  // margin 0.2: sure of "manta"
+  c.target_probability = 0.3;   // but maybe not a target at all
+  agent.on_contact(c);
+  REQUIRE(agent.objects().size() == 1);
+  CHECK(agent.objects()[0].decision.state == FinalState::kUncertain);
+  CHECK(agent.objects()[0].decision.fused.target_probability == Approx(0.3));
+  c.id = 2;
+  c.target_probability = 0.9;  // a second look: mean log-odds of 0.3 and 0.9 -> 0.66
+  agent.on_contact(c);
+  REQUIRE(agent.objects().size() == 1);
+  CHECK(agent.objects()[0].decision.fused.target_probability ==
+        Approx(1.0 / (1.0 + std::sqrt((0.7 / 0.3) * (0.1 / 0.9)))));
+  CHECK(agent.objects()[0].decision.state == FinalState::kConfirmed);
 }

@@ -1,10 +1,12 @@
 // The autonomy loop end to end, as a user runs it: a small model made with `sonarloop dataset`
-// and `sonarloop train`, then `sonarloop mission` on a two-target scenario (emulator, onboard
-// consumer and agent as three processes; pings over UDP, contacts over UDP, navigation over a
-// socketcand TCP connection, the pose over UDP, all on 127.0.0.1) in accelerated time. The
-// re-look threshold is so high that every contact is uncertain: each must be re-looked from about
-// 90 degrees at the pass range, and at least one object confirmed by its looks. Then Ctrl-C: the
-// mission stops its children and still writes its report.
+// and `sonarloop train`, then `sonarloop mission` on a two-target scenario, in lock-step (the
+// default: one process, reproducible) and with --realtime (emulator, onboard consumer and agent
+// as three processes; pings over UDP, contacts over UDP, navigation over a socketcand TCP
+// connection, the pose over UDP, all on 127.0.0.1) in accelerated time. The re-look threshold is
+// so high that every contact is uncertain: each must be re-looked from about 90 degrees at the
+// pass range, and at least one object confirmed by its looks. In lock-step the report is the
+// same byte for byte on one render thread or two, paced or not, and the survey is scored. Then
+// Ctrl-C: the mission still writes its report.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -69,29 +71,15 @@ JsonLine parse_file(const std::string& path) {
 
 }  // namespace
 
-TEST_CASE("an uncertain contact is re-looked from ~90 degrees and confirmed, over loopback") {
-  testing::TempDir dir("mission_cli");
-  const std::string& model = shared_model();
-  const std::string report = dir.file("mission.json");
-  const int rc = run_logged(dir,
-                            "mission " + kTwoTargetsScenario + " --model " + model + " --rate " +
-                                kRate + " --threshold 1e6 --area " + kArea + " --report " + report +
-                                " --out " + dir.file("logs") + " --quiet",
-                            "mission");
-  INFO(slurp(dir.file("mission.err")) << slurp(dir.file("logs/agent.log")));
-  REQUIRE(rc == 0);
-  const JsonLine m = parse_file(report);
+namespace {
+
+// The re-looks of a mission report: each flown passes at ~90 degrees and the pass range and sees
+// its object again, and an object is confirmed by its looks.
+void check_relooks(const JsonLine& m) {
   const JsonLine agent = *m.object("agent");
   CHECK(agent.boolean("mission_done") == true);
-  // navigation came over CAN (socketcand), with the seabed's depth for the altitude keeping
-  const JsonLine nav = *agent.object("nav");
-  CHECK(nav.number("frames").value_or(0) > 100);
-  CHECK(nav.number("depth_updates").value_or(0) > 10);
   CHECK(agent.number("contacts_received").value_or(0) >= 2);
-  // both targets were seen
-  const JsonLine summary = *m.object("summary");
-  CHECK(summary.number("detected") == Approx(2));
-  // every re-look that was flown passed at ~90 degrees and the pass range, and saw it again
+  CHECK(m.object("summary")->number("detected") == Approx(2));
   const auto relooks = agent.objects("relooks");
   REQUIRE(!relooks.empty());
   int passed = 0;
@@ -105,12 +93,8 @@ TEST_CASE("an uncertain contact is re-looked from ~90 degrees and confirmed, ove
     CHECK(r.number("latency_s").value_or(-1) > 0.0);
   }
   CHECK(passed >= 1);
-  // an object first uncertain (every one is, at this threshold), re-looked, confirmed
   int confirmed_after_relook = 0;
   for (const JsonLine& o : agent.objects("objects")) {
-    INFO("object " << o.number("object").value_or(0) << ": " << o.string("state").value_or("")
-                   << " " << o.string("class").value_or("-") << ", looks "
-                   << o.number("looks").value_or(0));
     if (o.boolean("relooked") == true && o.string("state") == "confirmed" &&
         o.number("looks").value_or(0) >= 2) {
       ++confirmed_after_relook;
@@ -119,7 +103,94 @@ TEST_CASE("an uncertain contact is re-looked from ~90 degrees and confirmed, ove
   CHECK(confirmed_after_relook >= 1);
 }
 
-TEST_CASE("Ctrl-C stops the mission's three processes and still writes the report") {
+}  // namespace
+
+TEST_CASE("lock-step: re-looks flown; the same report on 1 or 2 threads, paced or not; scored") {
+  testing::TempDir dir("mission_lockstep");
+  const std::string& model = shared_model();
+  const std::string base = "mission " + kTwoTargetsScenario + " --model " + model +
+                           " --threshold 1e6 --area " + kArea + " --detector-threshold 0.12" +
+                           " --relook-budget none --quiet";
+  REQUIRE(run_logged(
+              dir, base + " --threads 1 --report " + dir.file("a.json") + " --out " + dir.file("a"),
+              "a") == 0);
+  REQUIRE(run_logged(dir,
+                     base + " --threads 2 --rate 40 --report " + dir.file("b.json") + " --out " +
+                         dir.file("b"),
+                     "b") == 0);
+  INFO(slurp(dir.file("a.err")));
+  const std::string a = slurp(dir.file("a.json"));
+  CHECK(a == slurp(dir.file("b.json")));
+  CHECK(slurp(dir.file("a/seed_3_contacts.jsonl")) == slurp(dir.file("b/seed_3_contacts.jsonl")));
+  const JsonLine m = parse_file(dir.file("a.json"));
+  CHECK(m.object("run")->string("mode") == "lockstep");
+  const auto missions = m.objects("missions");
+  REQUIRE(missions.size() == 1);
+  check_relooks(missions[0]);
+  CHECK(missions[0].object("agent")->string("mode") == "lockstep");
+  // the survey's score: both targets covered and found
+  const auto rows = m.objects("survey");
+  REQUIRE(!rows.empty());
+  CHECK(rows[0].string("scope") == "all");
+  CHECK(rows[0].number("covered") == Approx(2));
+  CHECK(rows[0].number("detected") == Approx(2));
+  const std::string csv = slurp(dir.file("a/survey.csv"));
+  CHECK(csv.rfind("scope,surveys,targets,covered,detected,pd", 0) == 0);
+  CHECK(csv.find("\nall,1,2,2,2,1.0000") != std::string::npos);
+  CHECK(slurp(dir.file("a/detector_froc.csv")).rfind("threshold,targets", 0) == 0);
+  CHECK(slurp(dir.file("a/survey_targets.csv")).find("manta") != std::string::npos);
+}
+
+TEST_CASE("lock-step: Ctrl-C stops the mission and still writes the report") {
+  testing::TempDir dir("mission_lockstep_stop");
+  const std::string& model = shared_model();
+  const std::string report = dir.file("mission.json");
+  const pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    std::freopen(dir.file("mission.err").c_str(), "w", stderr);
+    // paced at real time: the survey would take a minute
+    execl(kBinary.c_str(), kBinary.c_str(), "mission", kTwoTargetsScenario.c_str(), "--model",
+          model.c_str(), "--rate", "1", "--area", kArea.c_str(), "--report", report.c_str(),
+          "--out", dir.file("out").c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::seconds(3));
+  kill(pid, SIGINT);
+  int status = 0;
+  REQUIRE(waitpid(pid, &status, 0) == pid);
+  INFO(slurp(dir.file("mission.err")));
+  CHECK(WIFEXITED(status));
+  const JsonLine m = parse_file(report);
+  CHECK(m.object("run")->boolean("stopped") == true);
+  const auto missions = m.objects("missions");
+  REQUIRE(missions.size() == 1);
+  CHECK(missions[0].object("agent")->boolean("stopped") == true);
+  CHECK(missions[0].object("summary")->number("mission_time_s").value_or(0) > 0.0);
+}
+
+TEST_CASE(
+    "--realtime: an uncertain contact is re-looked from ~90 degrees and confirmed, over loopback") {
+  testing::TempDir dir("mission_cli");
+  const std::string& model = shared_model();
+  const std::string report = dir.file("mission.json");
+  const int rc = run_logged(dir,
+                            "mission " + kTwoTargetsScenario + " --realtime --model " + model +
+                                " --rate " + kRate + " --threshold 1e6 --area " + kArea +
+                                " --detector-threshold 0.12 --relook-timing immediate --report " +
+                                report + " --out " + dir.file("logs") + " --quiet",
+                            "mission");
+  INFO(slurp(dir.file("mission.err")) << slurp(dir.file("logs/agent.log")));
+  REQUIRE(rc == 0);
+  const JsonLine m = parse_file(report);
+  // navigation came over CAN (socketcand), with the seabed's depth for the altitude keeping
+  const JsonLine nav = *m.object("agent")->object("nav");
+  CHECK(nav.number("frames").value_or(0) > 100);
+  CHECK(nav.number("depth_updates").value_or(0) > 10);
+  check_relooks(m);
+}
+
+TEST_CASE("--realtime: Ctrl-C stops the mission's three processes and still writes the report") {
   testing::TempDir dir("mission_stop");
   const std::string& model = shared_model();
   const std::string report = dir.file("mission.json");
@@ -128,8 +199,8 @@ TEST_CASE("Ctrl-C stops the mission's three processes and still writes the repor
   REQUIRE(pid >= 0);
   if (pid == 0) {
     std::freopen(dir.file("mission.err").c_str(), "w", stderr);
-    execl(kBinary.c_str(), kBinary.c_str(), "mission", kTwoTargetsScenario.c_str(), "--model",
-          model.c_str(), "--rate", kRate.c_str(), "--area", kArea.c_str(), "--report",
+    execl(kBinary.c_str(), kBinary.c_str(), "mission", kTwoTargetsScenario.c_str(), "--realtime",
+          "--model", model.c_str(), "--rate", kRate.c_str(), "--area", kArea.c_str(), "--report",
           report.c_str(), "--out", dir.file("logs").c_str(), "--quiet",
           static_cast<char*>(nullptr));
     _exit(127);

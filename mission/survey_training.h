@@ -1,0 +1,109 @@
+#pragma once
+// A model trained on surveys (ours; issue 24): the onboard consumer's own chips of the targets
+// and of its detector's false alarms (hard negatives), cut from lock-step surveys of training
+// seabeds with random target layouts (mission/survey_chips.h, mission/layout.h); the paper's PCA
+// subspace classifier trained on them with a "clutter" class besides the target types; and the
+// two contact gates (atr/contact_gate.h) fitted on the detections of training surveys labelled
+// by the truth.
+//
+// Two passes, on disjoint surveys:
+//   1. `surveys_per_scenario` surveys of each scenario: the chips (targets centred on the truth,
+//      false alarms on their rock) for the PCA model, and every detection's detector features
+//      for the detection gate;
+//   2. as many other surveys, flown with that model and detection gate: the classification
+//      features of every detection the gate passed, for the classification gate (a model's
+//      distances on the chips it was trained on are too small to fit a gate on).
+// Survey i of pass p of training scenario j uses scene seed and layout seed
+// first_seed + 100000 p + 1000 j + i (first_seed: 100000 by default), so the training surveys
+// never share a seed or a layout with the surveys a model is reported on (`sonarloop mission`:
+// the scenario's seed and the few after it, the scenario's own layout).
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "atr/chip.h"
+#include "atr/contact_gate.h"
+#include "atr/onboard_pipeline.h"
+#include "atr/subspace_classifier.h"
+#include "mission/agent_setup.h"
+#include "mission/lockstep.h"
+#include "mission/survey_chips.h"
+#include "sim/scenario.h"
+#include "sim/targets/target_type.h"
+
+namespace sonarloop::mission {
+
+struct TrainingSurveys {
+  std::vector<Scenario> scenarios;  // the seabeds trained on (their targets are replaced)
+  std::uint64_t first_seed = 100000;
+  int surveys_per_scenario = 2;
+  std::vector<targets::TargetType> types;  // placed per_type times each per survey
+  int per_type = 8;
+  double min_separation_m = 15.0;
+  AgentOverrides agent;  // the survey (lawnmower) over each scenario
+  atr::OnboardOptions onboard;
+  SurveyChipOptions chips;
+  LockstepOptions lockstep;
+  double label_radius_m = 3.0;  // a detection this close to a target is one of it
+};
+
+// Feature rows of one gate stage, labelled 1 (target) or 0 (clutter).
+struct GateRows {
+  std::vector<std::vector<double>> x;
+  std::vector<int> y;
+  std::vector<std::int64_t> target;  // per row: the target (survey seed x 1000 + index), -1
+};
+
+struct TrainingProgress {
+  int pass = 1;
+  int survey = 0, surveys = 0;  // done, total (of the pass)
+  SurveyChipCounts counts;      // chips so far (pass 1)
+  std::size_t rows = 0;         // gate rows so far
+};
+
+using TrainingProgressFn = std::function<void(const TrainingProgress&)>;
+using StopFn = std::function<bool()>;
+
+struct TrainingData {
+  std::vector<atr::LabelledChip> chips;
+  GateRows detection;  // every detection the detector reported
+};
+
+// Pass 1. `stop` (may be empty) is polled per batch: what was gathered so far is returned.
+TrainingData collect_training_data(const TrainingSurveys& t,
+                                   const TrainingProgressFn& progress = {},
+                                   const StopFn& stop = {});
+
+// Pass 2: the classification features of every reported detection that `model`'s detection gate
+// (if any) passed; `model`'s classification gate is not used.
+GateRows collect_classification_rows(const TrainingSurveys& t, const atr::Model& model,
+                                     const TrainingProgressFn& progress = {},
+                                     const StopFn& stop = {});
+
+struct SurveyModelOptions {
+  atr::TrainOptions train;  // the PCA model (class metadata: the simulator's types and clutter)
+  // the detection gate spares the classifier the obvious clutter: it keeps nearly every target;
+  // the classification gate decides (atr/contact_gate.h)
+  atr::GateFitOptions detection_gate = gate_options(0.99);
+  atr::GateFitOptions classification_gate = gate_options(0.95);
+  static atr::GateFitOptions gate_options(double keep_targets) {
+    atr::GateFitOptions o;
+    o.keep_targets = keep_targets;
+    return o;
+  }
+  // given: each gate's training rows go here too (for study: `train --surveys --gate-rows`)
+  std::function<void(atr::GateStage, const GateRows&)> on_gate_rows;
+};
+
+// A stage's rows as CSV: the feature names, label, target id.
+std::string gate_rows_csv(atr::GateStage stage, const GateRows& rows);
+
+// Both passes and every fit. Throws std::runtime_error when a stop request cut a pass short.
+atr::Model train_survey_model(const TrainingSurveys& t, const SurveyModelOptions& o,
+                              const TrainingProgressFn& progress = {}, const StopFn& stop = {});
+
+// The class metadata of the simulator's target types and of the clutter class.
+std::map<std::string, atr::ClassMetadata, std::less<>> survey_class_metadata();
+
+}  // namespace sonarloop::mission

@@ -1,0 +1,84 @@
+// `sonarloop train --surveys` and `sonarloop dataset --surveys` as a user runs them, on a small
+// cluttered scenario: the chips are the targets and the detector's false alarms, the model has a
+// clutter class and both contact gates, and `mission` with it reports the gate's probability on
+// its contacts and writes the gate's FROC.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <string>
+
+#include "atr/model_file.h"
+#include "autonomy/json_line.h"
+#include "tests/support/temp_dir.h"
+#include "tests/tools/sonarloop_cli.h"
+
+using namespace sonarloop;
+using sonarloop::testing::run_logged;
+using sonarloop::testing::slurp;
+
+namespace {
+
+const std::string kSmallSurvey =
+    std::string(SONARLOOP_SOURCE_DIR) + "/tests/data/mission/small_survey.yaml";
+// two 50 m lines, six targets a survey, the same seabed in both passes
+const std::string kSurveyOptions = " --surveys " + kSmallSurvey +
+                                   " --surveys-per-scenario 1 --per-type 2 --classes "
+                                   "manta,cylinder,box --area-margin 35 --min-separation 8";
+
+}  // namespace
+
+TEST_CASE("dataset --surveys: target chips and clutter chips in a chip folder") {
+  testing::TempDir dir("survey_dataset");
+  REQUIRE(run_logged(dir, "dataset --out " + dir.file("chips") + kSurveyOptions, "dataset") == 0);
+  INFO(slurp(dir.file("dataset.err")));
+  const std::string labels = slurp(dir.file("chips/labels.csv"));
+  CHECK(labels.rfind("file,class,aspect_deg,mine_like,source\n", 0) == 0);
+  CHECK(labels.find("clutter/000000.png,clutter,") != std::string::npos);
+  CHECK(std::filesystem::exists(dir.file("chips/clutter/000000.png")));
+  // at least one of the two targets was found and cut
+  CHECK((labels.find(",manta,") != std::string::npos ||
+         labels.find(",cylinder,") != std::string::npos));
+  // the folder trains like any other
+  REQUIRE(run_logged(dir, "train " + dir.file("chips") + " --out " + dir.file("m.slpca"),
+                     "train") == 0);
+  CHECK(slurp(dir.file("train.out")).find("clutter") != std::string::npos);
+}
+
+TEST_CASE("train --surveys: a clutter class and both gates; mission reports the gate") {
+  testing::TempDir dir("survey_train");
+  const std::string model = dir.file("surveys.slpca");
+  REQUIRE(run_logged(dir, "train --out " + model + kSurveyOptions + " --keep-targets 0.9",
+                     "train") == 0);
+  INFO(slurp(dir.file("train.err")) << slurp(dir.file("train.out")));
+  const atr::Model m = atr::load_model(model);
+  const int clutter = m.find_class("clutter");
+  REQUIRE(clutter >= 0);
+  CHECK(m.classes[static_cast<std::size_t>(clutter)].clutter);
+  CHECK_FALSE(m.classes[static_cast<std::size_t>(clutter)].mine_like);
+  REQUIRE(m.detection_gate);
+  REQUIRE(m.classification_gate);
+  CHECK(m.detection_gate->threshold > 0.0);
+  CHECK(m.detection_gate->threshold < 1.0);
+  // a mission with it: the contacts carry the gate's probability, the gate's FROC is written
+  REQUIRE(run_logged(dir,
+                     "mission " + kSmallSurvey + " --model " + model +
+                         " --no-relook --area-margin 35 --quiet --report " +
+                         dir.file("mission.json") + " --out " + dir.file("mission"),
+                     "mission") == 0);
+  const std::string froc = slurp(dir.file("mission/gate_froc.csv"));
+  CHECK(froc.rfind("threshold,targets,covered,detected", 0) == 0);
+  const std::string contacts = slurp(dir.file("mission/seed_5_contacts.jsonl"));
+  if (!contacts.empty()) CHECK(contacts.find("\"target_probability\":") != std::string::npos);
+  const std::string candidates = slurp(dir.file("mission/seed_5_candidates.csv"));
+  CHECK(candidates.find(",reported,") != std::string::npos);
+}
+
+TEST_CASE("train --surveys: usage errors") {
+  testing::TempDir dir("survey_train_usage");
+  CHECK(run_logged(dir, "train --surveys " + kSmallSurvey, "a") == 2);  // no --out
+  CHECK(slurp(dir.file("a.err")).find("--out") != std::string::npos);
+  CHECK(run_logged(dir, "train chips --surveys " + kSmallSurvey + " --out m", "b") == 2);
+  CHECK(run_logged(dir, "train --surveys no_such_scenario --out " + dir.file("m"), "c") != 0);
+  CHECK(run_logged(dir, "train --surveys " + kSmallSurvey + " --classes manta,dragon --out m",
+                   "d") == 2);
+  CHECK(slurp(dir.file("d.err")).find("dragon") != std::string::npos);
+}

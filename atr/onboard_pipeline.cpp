@@ -179,16 +179,20 @@ Contact OnboardPipeline::assess(const Detection& d, bool classify, CandidateRepo
   } else {
     const auto t0 = std::chrono::steady_clock::now();
     const CutStatus cut = cutter_->cut(waterfall_, centre);
+    // a detection that cannot be classified (its chip leaves the swath or the waterfall, or is
+    // degenerate) is reported unclassified, unless a classification gate has the last word: it
+    // cannot judge it (in a survey the neighbouring line sees it better)
+    const bool unjudged_passes = !m->classification_gate;
     if (cut != CutStatus::kOk) {
       c.status = cut_status_name(cut);
-      report->passed = true;  // reported unclassified, as without a gate
+      report->passed = unjudged_passes;
     } else {
       const AlignedClassification& a = aligned_->classify(*cutter_);
       stats_.windows += static_cast<std::uint64_t>(a.windows);
       c.windows = a.windows;
       if (a.result.class_index < 0) {
         c.status = chip_status_name(a.check.status);
-        report->passed = true;
+        report->passed = unjudged_passes;
       } else {
         const Classification& nearest = a.result;
         const bool clutter = m->classes[static_cast<std::size_t>(nearest.class_index)].clutter;

@@ -9,6 +9,8 @@
 //            -> detection gate (the detector's features)        atr/contact_gate.h
 //            -> ChipCutter ... AlignedClassifier (below)
 //            -> classification gate (and the distances)        atr/contact_gate.h
+//               (with a classification gate, a detection whose chip cannot be cut or
+//               classified is not reported: the gate cannot judge it)
 //               (without gates: an object identified as a clutter class, the detector's own
 //               false alarms learnt from training surveys, is not reported)
 //            -> LookFusion (fuse a re-seen object's looks)      atr/look_fusion.h

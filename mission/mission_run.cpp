@@ -56,9 +56,8 @@ SeedRun run_seed(const MissionSpec& spec, std::uint64_t seed, const LockstepHook
   r.detector_froc = study::froc_counts(r.score, candidates, spec.froc_thresholds,
                                        spec.onboard.look_radius_m, spec.score.match_radius_m);
   if (spec.model && spec.model->classification_gate) {
-    // the detections the detector reported, scored by the classification gate; those it could
-    // not classify (a chip cut off by the swath) pass at every threshold, those the detection
-    // gate kept out at none
+    // the detections the detector reported, scored by the classification gate; those the
+    // detection gate kept out, or whose chip could not be classified, pass at no threshold
     std::vector<study::ScoredCandidate> gated;
     for (const atr::CandidateReport& c : r.run.candidates) {
       if (c.candidate.fate != atr::CandidateFate::kReported) continue;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <map>
 #include <stdexcept>
 
 #include "mission/layout.h"
@@ -25,8 +27,9 @@ Scenario training_scenario(const TrainingSurveys& t, int pass, std::size_t j, in
 
 // Labels a detection at (north, east) of survey `seed` into `rows`: 1 and the target's id when
 // it is one of the scene's targets, else 0 and -1.
-void add_label(GateRows& rows, const scene::Scene& scene, std::uint64_t seed, double north_m,
-               double east_m, double radius_m) {
+void add_label(GateRows& rows, const scene::Scene& scene, std::uint64_t seed, int scenario,
+               double north_m, double east_m, double radius_m) {
+  rows.scenario.push_back(scenario);
   const auto& targets = scene.desc().targets;
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const Vec2& p = targets[i].position_m;
@@ -43,8 +46,8 @@ void add_label(GateRows& rows, const scene::Scene& scene, std::uint64_t seed, do
 // Flies every survey of one pass; `on_candidate` sees each candidate with its scene.
 void fly_pass(
     const TrainingSurveys& t, int pass, const std::optional<atr::Model>& model,
-    const std::function<void(const scene::Scene&, std::uint64_t seed, const atr::Waterfall&,
-                             const atr::CandidateReport&)>& on_candidate,
+    const std::function<void(const scene::Scene&, std::uint64_t seed, int scenario,
+                             const atr::Waterfall&, const atr::CandidateReport&)>& on_candidate,
     const std::function<void(int done, int total)>& after_survey, const StopFn& stop) {
   const int total = static_cast<int>(t.scenarios.size()) * t.surveys_per_scenario;
   int done = 0;
@@ -61,7 +64,7 @@ void fly_pass(
       LockstepHooks hooks;
       hooks.stop_requested = stop;
       hooks.on_candidate = [&](const atr::Waterfall& w, const atr::CandidateReport& r) {
-        on_candidate(scene, seed, w, r);
+        on_candidate(scene, seed, static_cast<int>(j), w, r);
       };
       (void)run_lockstep(sc, scene, model, t.onboard, agent, t.lockstep, hooks);
       after_survey(++done, total);
@@ -118,7 +121,7 @@ TrainingData collect_training_data(const TrainingSurveys& t, const TrainingProgr
   };
   fly_pass(
       t, 1, std::nullopt,
-      [&](const scene::Scene& scene, std::uint64_t seed, const atr::Waterfall& w,
+      [&](const scene::Scene& scene, std::uint64_t seed, int scenario, const atr::Waterfall& w,
           const atr::CandidateReport& r) {
         if (&scene != current) {
           flush();
@@ -129,7 +132,7 @@ TrainingData collect_training_data(const TrainingSurveys& t, const TrainingProgr
         collector->on_candidate(w, r);
         if (r.candidate.fate != atr::CandidateFate::kReported) return;
         data.detection.x.push_back(atr::detection_features(r.candidate.detection));
-        add_label(data.detection, scene, seed, r.contact.north_m, r.contact.east_m,
+        add_label(data.detection, scene, seed, scenario, r.contact.north_m, r.contact.east_m,
                   t.label_radius_m);
       },
       [&](int done, int total) {
@@ -154,14 +157,15 @@ GateRows collect_classification_rows(const TrainingSurveys& t, const atr::Model&
   p.pass = 2;
   fly_pass(
       t, 2, m,
-      [&](const scene::Scene& scene, std::uint64_t seed, const atr::Waterfall&,
+      [&](const scene::Scene& scene, std::uint64_t seed, int scenario, const atr::Waterfall&,
           const atr::CandidateReport& r) {
         // every detection classified (identified as clutter too): what the gate will judge
         if (r.candidate.fate != atr::CandidateFate::kReported) return;
         if (r.gate_features.size() != atr::gate_feature_count(atr::GateStage::kClassification))
           return;
         rows.x.push_back(r.gate_features);
-        add_label(rows, scene, seed, r.contact.north_m, r.contact.east_m, t.label_radius_m);
+        add_label(rows, scene, seed, scenario, r.contact.north_m, r.contact.east_m,
+                  t.label_radius_m);
       },
       [&](int done, int total) {
         p.survey = done;
@@ -173,8 +177,96 @@ GateRows collect_classification_rows(const TrainingSurveys& t, const atr::Model&
   return rows;
 }
 
+GateChoice choose_gate_threshold(const atr::LogisticGate& gate, const GateRows& rows,
+                                 const std::vector<std::string>& scenario_names,
+                                 int targets_per_scenario, double keep_targets,
+                                 double max_false_per_target) {
+  const std::size_t n = scenario_names.size();
+  // per row: its probability; per target: its best
+  std::vector<double> p(rows.x.size());
+  for (std::size_t r = 0; r < rows.x.size(); ++r)
+    p[r] = gate.probability(rows.x[r]);
+  std::vector<std::map<std::int64_t, double>> best(n);
+  std::vector<std::vector<double>> clutter(n);
+  for (std::size_t r = 0; r < rows.x.size(); ++r) {
+    const auto j = static_cast<std::size_t>(rows.scenario[r]);
+    if (j >= n) continue;
+    if (rows.y[r] == 1) {
+      auto [it, added] = best[j].try_emplace(rows.target[r], p[r]);
+      if (!added) it->second = std::max(it->second, p[r]);
+    } else {
+      clutter[j].push_back(p[r]);
+    }
+  }
+  // the largest threshold keeping `keep` of the targets whose best are `b` (the targets that
+  // reach the gate: one the detector never reported is not the gate's to keep); 0 without any
+  const auto own = [&](const std::map<std::int64_t, double>& b) {
+    std::vector<double> v;
+    for (const auto& [id, q] : b)
+      v.push_back(q);
+    std::sort(v.begin(), v.end(), std::greater<>());
+    const auto need =
+        static_cast<std::size_t>(std::ceil(keep_targets * static_cast<double>(v.size()) - 1e-9));
+    if (v.empty()) return 0.0;
+    return v[std::clamp<std::size_t>(need, 1, v.size()) - 1];
+  };
+  const auto count_at = [](const std::vector<double>& v, double t) {
+    return static_cast<int>(std::count_if(v.begin(), v.end(), [t](double q) { return q >= t; }));
+  };
+  GateChoice c;
+  c.threshold = 1.0;
+  bool any = false;
+  for (std::size_t j = 0; j < n; ++j) {
+    GateScenario s;
+    s.name = scenario_names[j];
+    s.targets = targets_per_scenario;
+    s.own_threshold = own(best[j]);
+    s.reaching = static_cast<int>(best[j].size());
+    const int fa = count_at(clutter[j], s.own_threshold);
+    s.served = targets_per_scenario > 0 && s.own_threshold > 0.0 &&
+               fa <= max_false_per_target * targets_per_scenario;
+    if (s.served) {
+      c.threshold = std::min(c.threshold, s.own_threshold);
+      any = true;
+    }
+    c.scenarios.push_back(s);
+  }
+  if (!any) {
+    // none served: keep_targets of all the targets
+    std::map<std::int64_t, double> all;
+    for (const auto& b : best)
+      all.insert(b.begin(), b.end());
+    c.threshold = own(all);
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    GateScenario& s = c.scenarios[j];
+    int kept = 0;
+    for (const auto& [id, q] : best[j])
+      kept += q >= c.threshold;
+    s.kept = s.reaching > 0 ? static_cast<double>(kept) / s.reaching : 0.0;
+    s.false_per_target =
+        targets_per_scenario > 0
+            ? static_cast<double>(count_at(clutter[j], c.threshold)) / targets_per_scenario
+            : 0.0;
+  }
+  return c;
+}
+
 atr::Model train_survey_model(const TrainingSurveys& t, const SurveyModelOptions& o,
                               const TrainingProgressFn& progress, const StopFn& stop) {
+  std::vector<std::string> names;
+  for (const Scenario& s : t.scenarios)
+    names.push_back(s.scene.name);
+  const int targets_per_scenario =
+      t.surveys_per_scenario * t.per_type * static_cast<int>(t.types.size());
+  // a gate's threshold chosen to serve the seabeds it can (choose_gate_threshold)
+  const auto choose = [&](atr::GateStage stage, atr::LogisticGate& g, const GateRows& rows,
+                          const atr::GateFitOptions& f, double max_false) {
+    const GateChoice c =
+        choose_gate_threshold(g, rows, names, targets_per_scenario, f.keep_targets, max_false);
+    g.threshold = c.threshold;
+    if (o.on_gate_choice) o.on_gate_choice(stage, c);
+  };
   TrainingData data = collect_training_data(t, progress, stop);
   if (stop && stop()) throw std::runtime_error("training stopped (pass 1 of 2)");
   atr::TrainOptions train = o.train;
@@ -183,12 +275,16 @@ atr::Model train_survey_model(const TrainingSurveys& t, const SurveyModelOptions
   if (o.on_gate_rows) o.on_gate_rows(atr::GateStage::kDetection, data.detection);
   model.detection_gate =
       fit_or_explain(atr::GateStage::kDetection, data.detection, o.detection_gate);
+  choose(atr::GateStage::kDetection, *model.detection_gate, data.detection, o.detection_gate,
+         o.detection_max_false_per_target);
   data = TrainingData{};  // the chips' memory back before pass 2
   const GateRows rows = collect_classification_rows(t, model, progress, stop);
   if (stop && stop()) throw std::runtime_error("training stopped (pass 2 of 2)");
   if (o.on_gate_rows) o.on_gate_rows(atr::GateStage::kClassification, rows);
   model.classification_gate =
       fit_or_explain(atr::GateStage::kClassification, rows, o.classification_gate);
+  choose(atr::GateStage::kClassification, *model.classification_gate, rows, o.classification_gate,
+         o.classification_max_false_per_target);
   atr::validate_model(model);
   return model;
 }
@@ -197,14 +293,15 @@ std::string gate_rows_csv(atr::GateStage stage, const GateRows& rows) {
   std::string out;
   for (const char* name : atr::gate_feature_names(stage))
     out += std::string(name) + ",";
-  out += "label,target\n";
+  out += "label,target,scenario\n";
   char v[64];
   for (std::size_t r = 0; r < rows.x.size(); ++r) {
     for (const double x : rows.x[r]) {
       std::snprintf(v, sizeof v, "%.9g,", x);
       out += v;
     }
-    std::snprintf(v, sizeof v, "%d,%lld\n", rows.y[r], static_cast<long long>(rows.target[r]));
+    std::snprintf(v, sizeof v, "%d,%lld,%d\n", rows.y[r], static_cast<long long>(rows.target[r]),
+                  rows.scenario[r]);
     out += v;
   }
   return out;

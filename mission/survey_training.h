@@ -53,7 +53,38 @@ struct GateRows {
   std::vector<std::vector<double>> x;
   std::vector<int> y;
   std::vector<std::int64_t> target;  // per row: the target (survey seed x 1000 + index), -1
+  std::vector<int> scenario;         // per row: the training scenario's index
 };
+
+// How a gate's threshold serves one training scenario (its seabed).
+struct GateScenario {
+  std::string name;
+  int targets = 0;             // in its surveys
+  int reaching = 0;            // of them, those with a detection at the gate
+  double own_threshold = 0.0;  // the largest keeping keep_targets of those reaching it
+  bool served = false;         // own_threshold costs at most max_false_per_target false detections
+  double kept = 0.0;           // of those reaching the gate, kept at the chosen threshold
+  double false_per_target = 0.0;  // its false detections per target at the chosen threshold
+};
+
+// The threshold a gate is given (ours; atr/contact_gate.h says why a threshold at all): the
+// lowest of the training scenarios' own thresholds (each the largest that keeps keep_targets of
+// that scenario's targets that reach the gate, a target kept when one of its detections
+// passes), over the scenarios
+// it serves: those whose own threshold costs at most max_false_per_target false detections per
+// target. A seabed where the gate cannot tell its targets from its relief (the eroded rock of
+// survey_rocky, at the strip sonar's 5 cm and 13 cm ping spacing) would otherwise drag the
+// threshold down to nearly 0 and let through the clutter of every other seabed; its targets are
+// then mostly missed, and the report of every seabed says so. When no scenario is served, the
+// threshold keeping keep_targets of all the targets.
+struct GateChoice {
+  double threshold = 0.0;
+  std::vector<GateScenario> scenarios;
+};
+GateChoice choose_gate_threshold(const atr::LogisticGate& gate, const GateRows& rows,
+                                 const std::vector<std::string>& scenario_names,
+                                 int targets_per_scenario, double keep_targets,
+                                 double max_false_per_target);
 
 struct TrainingProgress {
   int pass = 1;
@@ -83,10 +114,15 @@ GateRows collect_classification_rows(const TrainingSurveys& t, const atr::Model&
 
 struct SurveyModelOptions {
   atr::TrainOptions train;  // the PCA model (class metadata: the simulator's types and clutter)
-  // the detection gate spares the classifier the obvious clutter: it keeps nearly every target;
-  // the classification gate decides (atr/contact_gate.h)
+  // the detection gate spares the classifier the obvious clutter: it keeps nearly every target
+  // at up to 10 false detections per target; the classification gate decides, at up to one
+  // (atr/contact_gate.h, choose_gate_threshold)
   atr::GateFitOptions detection_gate = gate_options(0.99);
-  atr::GateFitOptions classification_gate = gate_options(0.95);
+  atr::GateFitOptions classification_gate = gate_options(0.98);
+  double detection_max_false_per_target = 10.0;
+  double classification_max_false_per_target = 1.0;
+  // the thresholds chosen and how they serve each training scenario
+  std::function<void(atr::GateStage, const GateChoice&)> on_gate_choice;
   static atr::GateFitOptions gate_options(double keep_targets) {
     atr::GateFitOptions o;
     o.keep_targets = keep_targets;

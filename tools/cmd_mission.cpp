@@ -371,20 +371,22 @@ int run_lockstep_missions(const Args& args, const std::string& model_path,
     throw UsageError(e.what());
   }
   install_stop_flag();
+  char pacing[64] = "";
+  if (rate) std::snprintf(pacing, sizeof pacing, ", paced at %g x real time", *rate);
   std::fprintf(stderr,
                "mission: scenario '%s' in lock-step, %zu seed%s from %llu, re-looks %s, %d render "
                "thread%s%s; files in %s\n",
                scenario.scene.name.c_str(), seeds.size(), seeds.size() == 1 ? "" : "s",
                static_cast<unsigned long long>(seeds.front()), spec.agent.relooks ? "on" : "off",
-               spec.lockstep.threads, spec.lockstep.threads == 1 ? "" : "s",
-               rate ? (", paced at " + std::to_string(*rate) + " x real time").c_str() : "",
+               spec.lockstep.threads, spec.lockstep.threads == 1 ? "" : "s", pacing,
                out_dir.string().c_str());
 
   study::SurveyTally tally;
   std::vector<study::FrocCounts> froc, gate_froc;
   std::vector<std::pair<std::uint64_t, study::SurveyScore>> scores;
   std::string missions_json;
-  MissionSummary pooled;
+  MissionSummary pooled;  // every seed's, added up (mission_done: all of them)
+  pooled.mission_done = true;
   bool stopped = false;
   const auto wall0 = std::chrono::steady_clock::now();
   for (const std::uint64_t seed : seeds) {
@@ -474,6 +476,7 @@ int run_lockstep_missions(const Args& args, const std::string& model_path,
   settings.field("layout", layout);
   settings.end_object();
   std::string text = "{\n  \"run\": " + settings.str() +
+                     ",\n  \"summary\": " + mission_summary_json(pooled) +
                      ",\n  \"survey\": " + survey_rows_json(rows) + ",\n  \"missions\": [\n" +
                      missions_json + "]\n}\n";
   report.write_and_close(text);

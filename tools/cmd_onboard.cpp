@@ -309,7 +309,9 @@ cleanly (objects still open are reported).
 options:
   --listen HOST:PORT     receive UDP there (port 0: any free port; the port is printed)
   --xtf FILE.xtf         read a recorded stream instead (e.g. run --record DIR: DIR/pings.xtf)
-  --model MODEL          a model of `sonarloop train` (highlight chips, e.g. 60 x 60 at 5 cm)
+  --model MODEL          a model of `sonarloop train` (highlight chips, e.g. 60 x 60 at 5 cm);
+                         `default`: the default model of `sonarloop mission` (built and cached
+                         the first time, docs/autonomy.md)
   --contacts FILE        write the contacts there (JSON Lines; default stdout); udp:HOST:PORT
                          sends each contact's JSON line as one UDP datagram there instead
                          (e.g. to `sonarloop autonomy --contacts`)

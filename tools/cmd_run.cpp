@@ -280,7 +280,8 @@ options:
                          --rate max 1767225600 = 2026-01-01T00:00:00Z, for reproducible files)
   --classify MODEL       run the onboard consumer in-process on the pings (as `sonarloop
                          onboard` does on the UDP stream): detect, classify with MODEL (of
-                         `sonarloop train`), one JSON contact report per object
+                         `sonarloop train`; `default`: the default model of `sonarloop
+                         mission`), one JSON contact report per object
   --contacts FILE        write the contact reports there (default stderr); udp:HOST:PORT:
                          one JSON line per UDP datagram there (`sonarloop autonomy`)
   --renderer R           profile (default: the heightfield profile renderer) or raytrace (the

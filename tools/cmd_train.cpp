@@ -14,6 +14,7 @@
 #include "tools/chip_options.h"
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
+#include "tools/default_model.h"
 #include "tools/progress.h"
 #include "tools/survey_training.h"
 
@@ -55,9 +56,26 @@ struct StageProgress {
   }
 };
 
+// `train --default [--path]`: the default model built (if not cached yet) and its path printed;
+// with --path only the path.
+int run_default_train(const std::vector<std::string>& argv) {
+  const Args args(argv, {{"--default", false}, {"--path", false}});
+  if (!args.positionals().empty()) {
+    throw UsageError("--default takes no CHIPS_DIR ('" + args.positionals()[0] + "')");
+  }
+  if (args.has("--path")) {
+    std::printf("%s\n", default_model_path().c_str());
+    return 0;
+  }
+  install_stop_flag();
+  std::printf("%s\n", ensure_default_model(false).c_str());
+  return 0;
+}
+
 int run_train(const std::vector<std::string>& argv) {
   for (const std::string& a : argv) {
     if (a == "--surveys" || a.rfind("--surveys=", 0) == 0) return run_survey_train(argv);
+    if (a == "--default") return run_default_train(argv);
   }
   const Args args(argv, {{"--out"},
                          {"--p"},
@@ -146,6 +164,7 @@ const Command kTrainCommand{
     "train the PCA (eigen-subspace) classifier on PNG or JPEG chips, one subfolder per class",
     R"(usage: sonarloop train CHIPS_DIR --out MODEL [options]
        sonarloop train --surveys SCENARIOS --out MODEL [survey options]
+       sonarloop train --default [--path]
 
 Trains the eigen-subspace classifier of Pailhas, Petillot & Capus (2010), Section 3.2: for each
 class, every chip is normalised by its own mean and standard deviation (eq. 9), the class mean
@@ -220,15 +239,18 @@ gates pass. Training seeds start at --seed (default 100000); missions are report
   --min-separation M     between targets (default 15)
   --area-margin M        the survey area: the seabed less this (default 50)
   --max-clutter N        clutter chips kept per survey, a uniform sample (default 400)
-  --keep-targets F       the classification gate keeps this fraction of the training targets,
-                         a target when one of its detections passes (default 0.95; the
-                         detection gate keeps 0.99, or F if larger)
+  --keep-targets F       the classification gate keeps this fraction of the training targets
+                         that reach it, a target when one of its detections passes, on every
+                         training seabed where that costs at most one false contact per target
+                         (default 0.98; the detection gate keeps 0.99, or F if larger, at up to
+                         10 false detections per target)
   --p N, --aspect-sectors N  as above (defaults 10 and 8)
   --gate-rows PREFIX     also write each gate's training rows (features, label, target) to
                          PREFIX_detection.csv and PREFIX_classification.csv
   --seed S, --threads N
 The default model of `sonarloop mission` is this with its defaults on the five built-in
-scenarios (tools/default_model.h): about 10 minutes on 2 cores.
+scenarios (tools/default_model.h): about 10 minutes on 2 cores, cached. `train --default`
+builds it now (if it is not cached yet) and prints its path; `--path` prints the path only.
 
 examples:
   sonarloop train out/chips --out out/atr.slpca

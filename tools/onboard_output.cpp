@@ -8,6 +8,7 @@
 #include "atr/model_file.h"
 #include "drivers/json/json_writer.h"
 #include "tools/chip_options.h"
+#include "tools/default_model.h"
 
 namespace sonarloop::tools {
 namespace {
@@ -65,6 +66,8 @@ std::string ContactWriter::describe() const {
 
 std::optional<atr::Model> load_model_if(const std::optional<std::string>& path) {
   if (!path) return std::nullopt;
+  // "default": the default model, built and cached the first time (tools/default_model.h)
+  if (is_default_model(*path)) return load_model_with_metadata(ensure_default_model(false));
   return load_model_with_metadata(*path);  // older model files: heights of simulated types
 }
 

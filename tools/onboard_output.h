@@ -43,7 +43,8 @@ class ContactWriter {
 };
 
 // Loads a model file (older formats: class heights from the simulator, tools/chip_options.h),
-// or nullopt when no path is given.
+// or nullopt when no path is given; "default" is the default model (tools/default_model.h),
+// built and cached the first time.
 std::optional<atr::Model> load_model_if(const std::optional<std::string>& path);
 
 // The end-of-run statistics on stderr, a few lines (`who` prefixes the first).

@@ -19,6 +19,23 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+def pool(missions):
+    """The missions' summaries added up, as `mission` pools them (tools/mission_report.cpp)."""
+    s = {}
+    for m in missions:
+        for key, value in m["summary"].items():
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                continue
+            s[key] = s.get(key, 0) + value
+    n = max(1, s.get("relooks_passed", 0))
+    for key in ("aspect_change_mean_deg", "pass_range_mean_m"):
+        s[key] = sum(m["summary"][key] * m["summary"]["relooks_passed"] for m in missions) / n
+    s["latency_mean_s"] = sum(m["summary"]["latency_mean_s"] * m["summary"]["relooks"]
+                              for m in missions) / max(1, s.get("relooks", 0))
+    s["latency_max_s"] = max(m["summary"]["latency_max_s"] for m in missions)
+    return s
+
+
 def load(spec):
     path, _, label = spec.partition("=")
     with open(path) as f:
@@ -28,8 +45,9 @@ def load(spec):
         run = report.get("run", {})
         label = "no re-looks" if not run.get("relooks", True) else (
             "threshold %g" % agent["threshold"])
-    # per mission: the pooled times over the missions
-    s = dict(report["summary"])
+    # per mission: the pooled times over the missions (a report without the pooled summary,
+    # written before it had one: its missions' summaries added up)
+    s = dict(report["summary"]) if "summary" in report else pool(report["missions"])
     n = len(report.get("missions", [])) or 1
     for key in ("mission_time_s", "distance_m", "relook_distance_m", "relook_time_s",
                 "wall_time_s"):

@@ -162,6 +162,15 @@ int run_survey_train(const std::vector<std::string>& argv) {
     o.classification_gate.keep_targets = *keep;
     o.detection_gate.keep_targets = std::max(*keep, o.detection_gate.keep_targets);
   }
+  o.on_gate_choice = [](atr::GateStage s, const mission::GateChoice& c) {
+    std::printf("%s gate: threshold %.4g\n", atr::gate_stage_name(s), c.threshold);
+    for (const mission::GateScenario& g : c.scenarios) {
+      std::printf("  %-18s %s: its targets kept %.1f %%, %.2f false detections per target%s\n",
+                  g.name.c_str(), g.served ? "served" : "not served", 100.0 * g.kept,
+                  g.false_per_target,
+                  g.served ? "" : " (keeping its targets would cost too many false detections)");
+    }
+  };
   if (const auto prefix = args.get("--gate-rows")) {
     o.on_gate_rows = [prefix](atr::GateStage s, const mission::GateRows& rows) {
       OutputFile f("--gate-rows", *prefix + "_" + atr::gate_stage_name(s) + ".csv");

@@ -128,6 +128,13 @@ TEST_CASE("lock-step: re-looks flown; the same report on 1 or 2 threads, paced o
   REQUIRE(missions.size() == 1);
   check_relooks(missions[0]);
   CHECK(missions[0].object("agent")->string("mode") == "lockstep");
+  // the pooled summary: of the one seed, the seed's
+  const auto pooled = m.object("summary");
+  REQUIRE(pooled);
+  CHECK(pooled->number("targets") == missions[0].object("summary")->number("targets"));
+  CHECK(pooled->number("mission_time_s") ==
+        missions[0].object("summary")->number("mission_time_s"));
+  CHECK(pooled->boolean("mission_done") == missions[0].object("summary")->boolean("mission_done"));
   // the survey's score: both targets covered and found
   const auto rows = m.objects("survey");
   REQUIRE(!rows.empty());

@@ -82,3 +82,30 @@ TEST_CASE("train --surveys: usage errors") {
                    "d") == 2);
   CHECK(slurp(dir.file("d.err")).find("dragon") != std::string::npos);
 }
+
+TEST_CASE("the default model: its cached file is what a mission without --model uses") {
+  testing::TempDir dir("default_model");
+  const std::string cache = "SONARLOOP_CACHE_DIR=" + dir.file("cache") + " ";
+  // where it lives (nothing is built by --path)
+  REQUIRE(testing::run_command(cache + testing::kBinary + " train --default --path > " +
+                               dir.file("path.out")) == 0);
+  std::string path = slurp(dir.file("path.out"));
+  while (!path.empty() && path.back() == '\n')
+    path.pop_back();
+  CHECK(path.rfind(dir.file("cache") + "/models/default-", 0) == 0);
+  CHECK(path.size() > 6);
+  CHECK(path.substr(path.size() - 6) == ".slpca");
+  CHECK_FALSE(std::filesystem::exists(path));
+  // a model put there as if built: the mission takes it (a build would take many minutes)
+  REQUIRE(run_logged(dir, "train --out " + dir.file("m.slpca") + kSurveyOptions, "train") == 0);
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  std::filesystem::copy_file(dir.file("m.slpca"), path);
+  REQUIRE(testing::run_command(cache + testing::kBinary + " mission " + kSmallSurvey +
+                               " --no-relook --area-margin 35 --quiet --report " +
+                               dir.file("mission.json") + " --out " + dir.file("mission") + " > " +
+                               dir.file("mission.out") + " 2> " + dir.file("mission.err")) == 0);
+  INFO(slurp(dir.file("mission.err")));
+  const std::string report = slurp(dir.file("mission.json"));
+  CHECK(report.find("\"model\":\"" + path + "\"") != std::string::npos);
+  CHECK(slurp(dir.file("mission.err")).find("training it once") == std::string::npos);
+}

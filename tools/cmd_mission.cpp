@@ -244,6 +244,12 @@ std::string supervise(std::vector<Child>& children, const Logs& logs, bool quiet
   return failure;
 }
 
+// The report's folder, as --out's: made when missing.
+void create_parent_folder(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+}
+
 // The report's "run" object: how the mission was run.
 std::string run_settings_json(const Args& args, const config::Scenario& scenario,
                               const std::string& rate, const std::string& model,
@@ -269,6 +275,7 @@ int run_realtime(const Args& args, const std::string& model,
   const Logs logs{args.get_or(
       "--out", (std::filesystem::path(report_path).parent_path() / "mission_logs").string())};
   std::filesystem::create_directories(logs.dir);
+  create_parent_folder(report_path);
   OutputFile report("--report", report_path);  // opened now: fails before the run
   const bool quiet = args.has("--quiet");
 
@@ -353,7 +360,7 @@ int run_lockstep_missions(const Args& args, const std::string& model_path,
                            .value_or(std::max(1u, std::thread::hardware_concurrency())));
   if (const auto d = args.get_double("--max-duration", 1.0, 1e7)) spec.lockstep.max_duration_s = *d;
   spec.score.match_radius_m =
-      args.get_double("--match-radius", 0.1, 100.0).value_or(spec.score.match_radius_m);
+      args.get_double("--match-radius", 0.01, 100.0).value_or(spec.score.match_radius_m);
   const std::optional<double> rate = args.get("--rate") && *args.get("--rate") != "max"
                                          ? args.get_double("--rate", 0.01, 1000.0)
                                          : std::nullopt;
@@ -362,6 +369,7 @@ int run_lockstep_missions(const Args& args, const std::string& model_path,
   const std::filesystem::path out_dir =
       args.get_or("--out", (std::filesystem::path(report_path).parent_path() / "mission").string());
   std::filesystem::create_directories(out_dir);
+  create_parent_folder(report_path);
   OutputFile report("--report", report_path);  // opened now: fails before the run
   const bool quiet = args.has("--quiet");
   try {
@@ -437,7 +445,7 @@ int run_lockstep_missions(const Args& args, const std::string& model_path,
     const std::string mission_json = mission_report_json(
         agent_report, r.scenario,
         "\"seed\": " + std::to_string(seed) + ",\n  \"survey\": " + survey_score_json(r.score),
-        &summary);
+        &summary, spec.score.match_radius_m);
     missions_json += (missions_json.empty() ? "" : ",\n") + mission_json;
     pooled = add_summaries(pooled, summary);
     tally.add(r.score);
@@ -523,6 +531,7 @@ int run_mission(const std::vector<std::string>& argv) {
   if (!model || is_default_model(*model)) {
     install_stop_flag();
     model = ensure_default_model(args.has("--quiet"));
+    std::fprintf(stderr, "mission: the default model, %s\n", model->c_str());
   }
   if (args.has("--realtime")) {
     for (const char* o : {"--seed", "--seeds", "--threads", "--match-radius", "--layout",
@@ -575,7 +584,7 @@ options:
   --model MODEL          the onboard consumer's model (`sonarloop train`); default (or none
                          given): the default model, trained once from the documented recipe on
                          the built-in survey scenarios and cached (tools/default_model.h; about
-                         10 minutes the first time)
+                         7 minutes on 2 cores the first time)
   --seeds N              lock-step: fly N seeds (default 1), from --seed S (default: the
                          scenario's seed)
   --layout L             lock-step: scenario (the scenario's targets, default) or random (the
@@ -589,7 +598,8 @@ options:
                          metres measured from its shadow (default 0.14; atr/detector.h)
   --classify-candidates  lock-step: classify the detector's candidates below its threshold too
                          (in seed_S_candidates.csv; slower)
-  --match-radius M       lock-step: a contact within M of a target is it (default 3)
+  --match-radius M       lock-step: a contact within M of a target is it (default 3; more
+                         where the navigation drifts: contacts are placed from it)
   --threshold T          the agent's re-look margin threshold (default 0.05)
   --no-relook            survey only (the baseline of the table)
   --relook-all           re-look non-mine objects too (default: only where the doubt could
@@ -606,19 +616,19 @@ options:
   --area N0,E0,N1,E1     the survey rectangle (default: the seabed less --area-margin)
   --area-margin M        (default 50)
   --max-duration S       stop the agent after S mission seconds
-  --report FILE          the JSON report (default out/mission.json)
+  --report FILE          the JSON report (default out/mission.json; its folder is made)
   --out DIR              lock-step: the tables and per-seed files (default: FILE's
                          folder/mission); --realtime: the children's logs and reports (default:
                          FILE's folder/mission_logs)
   --quiet                no progress lines
 
 examples:
-  sonarloop dataset --out out/chips7 --count 300 --classes manta,rockan,cylinder,large_cuboid,hemisphere,small_hemisphere,box
-  sonarloop train out/chips7 --out out/atr7.slpca --aspect-sectors 8 --p 10
-  sonarloop mission config/mission_20.yaml --model out/atr7.slpca --report out/mission.json
-  sonarloop mission config/mission_20.yaml --model out/atr7.slpca --no-relook --seeds 5
-  sonarloop mission config/survey_rocky.yaml --model out/atr7.slpca --no-relook --seeds 5 --layout random
-  sonarloop mission config/mission_20.yaml --model out/atr7.slpca --realtime --rate 5
+  sonarloop mission config/mission_20.yaml         # the default model, one seed, re-looks
+  sonarloop mission mission_20 --no-relook --seeds 5 --report out/m20.json --out out/m20
+  sonarloop mission survey_rocky --no-relook --seeds 5 --layout random
+  sonarloop mission config/soak_1km2.yaml --no-relook --match-radius 6   # 3 h 40 min, drifting
+  sonarloop mission config/mission_20.yaml --model out/atr7.slpca        # a model of chips, no gates
+  sonarloop mission config/mission_20.yaml --realtime --rate 5
 )",
     run_mission, 19};
 SONARLOOP_REGISTER_COMMAND(kMissionCommand);

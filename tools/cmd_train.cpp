@@ -249,7 +249,7 @@ gates pass. Training seeds start at --seed (default 100000); missions are report
                          PREFIX_detection.csv and PREFIX_classification.csv
   --seed S, --threads N
 The default model of `sonarloop mission` is this with its defaults on the five built-in
-scenarios (tools/default_model.h): about 10 minutes on 2 cores, cached. `train --default`
+scenarios (tools/default_model.h): about 7 minutes on 2 cores, cached. `train --default`
 builds it now (if it is not cached yet) and prints its path; `--path` prints the path only.
 
 examples:

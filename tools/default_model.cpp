@@ -105,7 +105,7 @@ std::string ensure_default_model(bool quiet) {
   }
   std::fprintf(stderr,
                "default model: not cached yet: training it once from the documented recipe "
-               "(docs/autonomy.md; about 10 minutes on 2 cores) into %s\n",
+               "(docs/autonomy.md; about 7 minutes on 2 cores) into %s\n",
                path.c_str());
   const auto t0 = std::chrono::steady_clock::now();
   const atr::Model model = mission::train_survey_model(

@@ -39,11 +39,11 @@ std::vector<Object> read_objects(const autonomy::JsonLine& report) {
 }
 
 // Each target's nearest unmatched object within the radius (targets in order).
-std::vector<int> match(const config::Scenario& sc, std::vector<Object>& objects) {
+std::vector<int> match(const config::Scenario& sc, std::vector<Object>& objects, double radius_m) {
   std::vector<int> of_target(sc.scene.targets.size(), -1);
   for (std::size_t t = 0; t < sc.scene.targets.size(); ++t) {
     const Vec2 p = sc.scene.targets[t].position_m;
-    double best = kTargetMatchRadius_m;
+    double best = radius_m;
     for (std::size_t i = 0; i < objects.size(); ++i) {
       if (objects[i].target >= 0) continue;
       const double d = std::hypot(objects[i].north_m - p.x(), objects[i].east_m - p.y());
@@ -85,13 +85,14 @@ double fraction(int n, int d) {
 }  // namespace
 
 std::string mission_report_json(const std::string& agent_report, const config::Scenario& sc,
-                                const std::string& extra_fields_json, MissionSummary* summary) {
+                                const std::string& extra_fields_json, MissionSummary* summary,
+                                double match_radius_m) {
   std::string error;
   const auto report = autonomy::JsonLine::parse(agent_report, error);
   if (!report) throw std::runtime_error("the agent's report does not parse: " + error);
   MissionSummary s;
   std::vector<Object> objects = read_objects(*report);
-  const std::vector<int> of_target = match(sc, objects);
+  const std::vector<int> of_target = match(sc, objects, match_radius_m);
   s.targets = static_cast<int>(sc.scene.targets.size());
   s.objects = static_cast<int>(objects.size());
   json::Writer w(true);

@@ -2,8 +2,9 @@
 // `sonarloop mission`'s report: the agent's objects (its --report) matched against the scenario's
 // targets, and the numbers of docs/autonomy.md's table.
 //
-// Matching: each target is matched to the nearest object within kTargetMatchRadius_m of it (an
-// object matches one target at most); an object matched to no target is a false contact.
+// Matching: each target is matched to the nearest object within the match radius of it
+// (kTargetMatchRadius_m unless `mission --match-radius`; an object matches one target at most);
+// an object matched to no target is a false contact.
 //   detected              targets with an object
 //   identified            of those, the object's final class is the target's type
 //   mine_correct          of those, the object's mine / non-mine decision is the target's
@@ -36,7 +37,8 @@ struct MissionSummary {
 // The mission report (JSON) from the agent's report text; *summary gets the totals. Throws
 // std::runtime_error when the agent's report does not parse.
 std::string mission_report_json(const std::string& agent_report, const config::Scenario& scenario,
-                                const std::string& extra_fields_json, MissionSummary* summary);
+                                const std::string& extra_fields_json, MissionSummary* summary,
+                                double match_radius_m = kTargetMatchRadius_m);
 
 // A few lines for the console.
 void print_mission_summary(const MissionSummary& s);

@@ -4,10 +4,10 @@
 usage: tools/plot_autonomy.py --out docs/autonomy REPORT.json[=LABEL] ...
 
 Prints the with/without table (Markdown) of the reports and writes OUT/accuracy_vs_time.png:
-the fraction of targets identified, confirmed right and called mine / non-mine right against
-the mission's duration, one point per report (e.g. one per re-look setting, and the survey
-without re-looks). A lock-step report of several seeds counts them all (its pooled "summary";
-mission times are then per mission, the mean over the seeds).
+per scenario, the fraction of targets confirmed right and identified against the mission's
+duration relative to its survey's, one point per report (e.g. the survey without re-looks and
+the mission with them, or one per re-look setting). A lock-step report of several seeds counts
+them all (its pooled "summary"; mission times are then per mission, the mean over the seeds).
 """
 import argparse
 import json
@@ -91,23 +91,31 @@ def table(reports):
 
 
 def chart(reports, path):
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    series = [("identified", "identified", "o"), ("confirmed_correct", "confirmed and right", "s"),
-              ("mine_correct", "mine / non-mine right", "^")]
-    for key, name, marker in series:
-        pts = sorted((r["summary"]["mission_time_s"], r["summary"][key] / r["summary"]["targets"])
-                     for _, r in reports)
-        ax.plot([p[0] for p in pts], [100 * p[1] for p in pts], marker=marker, label=name)
+    """Per scenario (the reports' run.scenario), its reports joined in order of mission time:
+    the share of targets confirmed and right, and identified, against the mission time relative
+    to the scenario's shortest report (its survey without re-looks)."""
+    groups = {}
     for label, r in reports:
-        s = r["summary"]
-        ax.annotate(label, (s["mission_time_s"], 100.0 * s["identified"] / s["targets"]),
-                    textcoords="offset points", xytext=(4, 6), fontsize=8)
-    ax.set_xlabel("mission time (s)")
-    ax.set_ylabel("targets (%)")
-    ax.set_ylim(0, 105)
-    ax.grid(alpha=0.3)
-    ax.legend(loc="lower right")
-    ax.set_title("Accuracy against mission time for re-look thresholds")
+        name = r.get("run", {}).get("scenario", label)
+        groups.setdefault(name, []).append((label, r))
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4.2), sharex=True)
+    keys = [("confirmed_correct", "confirmed and correctly identified"),
+            ("identified", "correctly identified (final class)")]
+    for ax, (key, title) in zip(axes, keys):
+        for name, members in groups.items():
+            pts = sorted((r["summary"]["mission_time_s"], r["summary"][key] / r["summary"]["targets"])
+                         for _, r in members)
+            t0 = pts[0][0]
+            ax.plot([p[0] / t0 for p in pts], [100 * p[1] for p in pts], marker="o", label=name)
+        ax.set_title(title, fontsize=10)
+        ax.set_xlabel("mission time / the survey's")
+        ax.set_ylim(0, 105)
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("targets (%)")
+    # issue 24's goal: 95 % confirmed and right within 1.5 times the survey's time
+    axes[0].axhline(95, color="gray", ls="--", lw=1)
+    axes[0].axvline(1.5, color="gray", ls=":", lw=1)
+    axes[1].legend(loc="lower right", fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 

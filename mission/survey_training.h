@@ -70,13 +70,12 @@ struct GateScenario {
 // The threshold a gate is given (ours; atr/contact_gate.h says why a threshold at all): the
 // lowest of the training scenarios' own thresholds (each the largest that keeps keep_targets of
 // that scenario's targets that reach the gate, a target kept when one of its detections
-// passes), over the scenarios
-// it serves: those whose own threshold costs at most max_false_per_target false detections per
-// target. A seabed where the gate cannot tell its targets from its relief (the eroded rock of
-// survey_rocky, at the strip sonar's 5 cm and 13 cm ping spacing) would otherwise drag the
-// threshold down to nearly 0 and let through the clutter of every other seabed; its targets are
-// then mostly missed, and the report of every seabed says so. When no scenario is served, the
-// threshold keeping keep_targets of all the targets.
+// passes), over the scenarios it serves: those whose own threshold costs at most
+// max_false_per_target false detections per target. A seabed where the gate cannot tell its targets
+// from its relief (the eroded rock of survey_rocky, at the strip sonar's 5 cm and 13 cm ping
+// spacing) would otherwise drag the threshold down to nearly 0 and let through the clutter of every
+// other seabed; its targets are then mostly missed, and the report of every seabed says so. When no
+// scenario is served, the threshold keeping keep_targets of all the targets.
 struct GateChoice {
   double threshold = 0.0;
   std::vector<GateScenario> scenarios;

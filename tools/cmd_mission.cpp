@@ -627,7 +627,8 @@ examples:
   sonarloop mission mission_20 --no-relook --seeds 5 --report out/m20.json --out out/m20
   sonarloop mission survey_rocky --no-relook --seeds 5 --layout random
   sonarloop mission config/soak_1km2.yaml --no-relook --match-radius 6   # 3 h 40 min, drifting
-  sonarloop mission config/mission_20.yaml --model out/atr7.slpca        # a model of chips, no gates
+  sonarloop train --surveys survey_clutter,mission_20 --out out/mine.slpca
+  sonarloop mission config/mission_20.yaml --model out/mine.slpca
   sonarloop mission config/mission_20.yaml --realtime --rate 5
 )",
     run_mission, 19};

@@ -244,10 +244,12 @@ std::string supervise(std::vector<Child>& children, const Logs& logs, bool quiet
   return failure;
 }
 
-// The report's folder, as --out's: made when missing.
-void create_parent_folder(const std::string& path) {
-  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
+// A folder an option names (--out, or --report's), made when missing; a clear error otherwise.
+void make_folder(const std::string& option, const std::filesystem::path& dir) {
+  std::error_code ec;
+  if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+  if (ec)
+    throw std::runtime_error(option + " " + dir.string() + ": cannot make it: " + ec.message());
 }
 
 // The report's "run" object: how the mission was run.
@@ -274,8 +276,8 @@ int run_realtime(const Args& args, const std::string& model,
   const std::string report_path = args.get_or("--report", "out/mission.json");
   const Logs logs{args.get_or(
       "--out", (std::filesystem::path(report_path).parent_path() / "mission_logs").string())};
-  std::filesystem::create_directories(logs.dir);
-  create_parent_folder(report_path);
+  make_folder("--report", std::filesystem::path(report_path).parent_path());
+  make_folder("--out", logs.dir);
   OutputFile report("--report", report_path);  // opened now: fails before the run
   const bool quiet = args.has("--quiet");
 
@@ -368,8 +370,8 @@ int run_lockstep_missions(const Args& args, const std::string& model_path,
   const std::string report_path = args.get_or("--report", "out/mission.json");
   const std::filesystem::path out_dir =
       args.get_or("--out", (std::filesystem::path(report_path).parent_path() / "mission").string());
-  std::filesystem::create_directories(out_dir);
-  create_parent_folder(report_path);
+  make_folder("--report", std::filesystem::path(report_path).parent_path());
+  make_folder("--out", out_dir);
   OutputFile report("--report", report_path);  // opened now: fails before the run
   const bool quiet = args.has("--quiet");
   try {

@@ -1,5 +1,7 @@
 #include "tools/survey_training.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -177,7 +179,19 @@ int run_survey_train(const std::vector<std::string>& argv) {
       f.write_and_close(mission::gate_rows_csv(s, rows));
     };
   }
-  OutputFile check("--out", *out);  // an unwritable place fails now, not after the training
+  // the model's folder made (as `mission` makes its report's); an unwritable place fails now,
+  // not after the training, and a model already there is kept until the new one is written
+  if (const auto parent = std::filesystem::path(*out).parent_path(); !parent.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(parent, ec);
+    if (ec) throw std::runtime_error("--out " + *out + ": cannot make its folder: " + ec.message());
+  }
+  {
+    const std::string probe = *out + ".probe." + std::to_string(::getpid());
+    OutputFile check("--out", probe);
+    check.write_and_close("");
+    std::filesystem::remove(probe);
+  }
   install_stop_flag();
   const auto t0 = std::chrono::steady_clock::now();
   std::fprintf(stderr,

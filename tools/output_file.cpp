@@ -29,4 +29,12 @@ void OutputFile::write_and_close(const std::string& text) {
   }
 }
 
+void make_folder(const std::string& option, const std::filesystem::path& dir) {
+  std::error_code ec;
+  if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    throw std::runtime_error(option + " " + dir.string() + ": cannot make it: " + ec.message());
+  }
+}
+
 }  // namespace sonarloop::tools

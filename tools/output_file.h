@@ -3,6 +3,7 @@
 // when the command starts, so that an unwritable place fails at once with the reason ("No such
 // file or directory", "Permission denied") instead of after the whole run.
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -21,5 +22,9 @@ class OutputFile {
   std::string path_;
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_;
 };
+
+// A folder an option names (--out, or a file's folder), made when missing. Throws
+// std::runtime_error "OPTION DIR: cannot make it: why".
+void make_folder(const std::string& option, const std::filesystem::path& dir);
 
 }  // namespace sonarloop::tools

@@ -181,11 +181,7 @@ int run_survey_train(const std::vector<std::string>& argv) {
   }
   // the model's folder made (as `mission` makes its report's); an unwritable place fails now,
   // not after the training, and a model already there is kept until the new one is written
-  if (const auto parent = std::filesystem::path(*out).parent_path(); !parent.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(parent, ec);
-    if (ec) throw std::runtime_error("--out " + *out + ": cannot make its folder: " + ec.message());
-  }
+  make_folder("--out", std::filesystem::path(*out).parent_path());
   {
     const std::string probe = *out + ".probe." + std::to_string(::getpid());
     OutputFile check("--out", probe);

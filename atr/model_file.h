@@ -6,7 +6,7 @@
 // height (its flags byte is 0); version 1 also lacks the pre-processing record (read as no
 // pre-processing) and the reject and typical distances. Older versions are read with every class's
 // height unknown (the tools then fill the heights of the simulator's target classes,
-// tools/class_metadata.h); mine_like was stored by every version.
+// fill_legacy_class_heights, tools/chip_options.h); mine_like was stored by every version.
 //
 //   header, 36 bytes
 //     0   u8[5]  magic "SLPCA"

@@ -9,26 +9,6 @@
 
 namespace sonarloop::atr {
 
-const char* datagram_outcome_name(DatagramOutcome o) {
-  switch (o) {
-    case DatagramOutcome::kFileHeader:
-      return "file_header";
-    case DatagramOutcome::kPing:
-      return "ping";
-    case DatagramOutcome::kDuplicate:
-      return "duplicate";
-    case DatagramOutcome::kLate:
-      return "late";
-    case DatagramOutcome::kMalformed:
-      return "malformed";
-    case DatagramOutcome::kBeforeHeader:
-      return "before_header";
-    case DatagramOutcome::kOther:
-      return "other";
-  }
-  return "?";
-}
-
 StreamReceiver::StreamReceiver(const ReceiverOptions& options, PingSink sink)
     : options_(options), sink_(std::move(sink)) {
   if (options_.reorder_window < 1 || options_.reorder_window > 65536) {

@@ -99,8 +99,6 @@ enum class DatagramOutcome {
   kOther,
 };
 
-const char* datagram_outcome_name(DatagramOutcome o);
-
 class StreamReceiver {
  public:
   // Called for each ping in order, with the file header it was decoded with. The ping is only

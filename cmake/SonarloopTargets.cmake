@@ -30,10 +30,34 @@ endfunction()
 set(SONARLOOP_FUZZ_COVERED_LIBRARIES sonarloop_common sonarloop_drivers sonarloop_config
     sonarloop_emulator sonarloop_atr sonarloop_study)
 
-# sonarloop_add_library(NAME SOURCES...): one static library per top-level folder.
+# Include scopes: a target sees the headers of the folders it links, not the whole source tree.
+# Every #include of the project names its folder ("atr/detector.h"), so the include path of a
+# target cannot be the source root (that would show it every folder). Instead each folder gets a
+# directory of its own in the build tree, include_scopes/FOLDER, holding one symbolic link,
+# FOLDER -> the source folder; a library adds its folder's directory to its PUBLIC include path,
+# so that it and what links it, and nothing else, resolve "FOLDER/...". A header of a layer a
+# library does not link is then "not found": the build enforces the layers of
+# scripts/check_layers.sh (design.md, "Layers").
+#
+# sonarloop_include_scope(TARGET PUBLIC|PRIVATE|INTERFACE FOLDER): TARGET sees FOLDER's headers
+# (FOLDER relative to the source root: atr, tests).
+function(sonarloop_include_scope target scope folder)
+  set(dir ${PROJECT_BINARY_DIR}/include_scopes/${folder})
+  if(NOT IS_SYMLINK ${dir}/${folder})
+    file(MAKE_DIRECTORY ${dir})
+    file(CREATE_LINK ${PROJECT_SOURCE_DIR}/${folder} ${dir}/${folder} SYMBOLIC)
+  endif()
+  target_include_directories(${target} ${scope} ${dir})
+endfunction()
+
+# sonarloop_add_library(NAME SOURCES...): one static library per top-level folder (the folder of
+# the calling CMakeLists.txt's first path component: tools/web's library is in tools' scope).
 function(sonarloop_add_library name)
   add_library(${name} STATIC ${ARGN})
-  target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  file(RELATIVE_PATH rel ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR})
+  string(REGEX REPLACE "/.*" "" folder ${rel})
+  sonarloop_include_scope(${name} PUBLIC ${folder})
+  target_link_libraries(${name} PUBLIC sonarloop_units)
   sonarloop_target_defaults(${name})
   if(SONARLOOP_SANITIZE)
     # The ASan build's -O1 (its build type, for the test code and the tools) is raised to -O2 for

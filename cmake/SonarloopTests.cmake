@@ -2,9 +2,9 @@
 #
 # sonarloop_add_test(SOURCE LIBS...) adds SOURCE to its folder's executable, named after the
 # folder below tests/ (tests/sim/seabed/*_test.cpp -> test_sim_seabed), and links LIBS to it. The
-# file's cases run as the CTest entry named after the file (tests/sim/seabed/fractal_test.cpp ->
-# test_sim_seabed_fractal): the executable selects them by the tag Catch2 gives every case with
-# -# (--filenames-as-tags), "[#fractal_test]", and --warn NoTests makes an entry that selects no
+# file's cases run as the CTest entry named after the file (tests/sim/seabed/noise_layer_test.cpp ->
+# test_sim_seabed_noise_layer): the executable selects them by the tag Catch2 gives every case with
+# -# (--filenames-as-tags), "[#noise_layer_test]", and --warn NoTests makes an entry that selects no
 # case fail instead of passing empty. Why one executable per folder: 20 links instead of 120, and
 # one precompiled header (Catch2, Eigen and the standard library, tests/support/test_pch.h)
 # parsed once per build instead of once per test file.
@@ -24,7 +24,7 @@ function(sonarloop_add_test_pch)
   foreach(pch ${pchs})
     add_library(${pch} OBJECT ${PROJECT_SOURCE_DIR}/tests/support/test_pch.cpp)
     target_link_libraries(${pch} PRIVATE Catch2::Catch2 Eigen3::Eigen)
-    target_include_directories(${pch} PRIVATE ${PROJECT_SOURCE_DIR})
+    sonarloop_include_scope(${pch} PRIVATE tests)
     sonarloop_test_settings(${pch})
     target_precompile_headers(${pch} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support/test_pch.h)
   endforeach()

@@ -52,7 +52,7 @@ PingWindow ping_window(SimTime send_time, SimTime next_send_time, SimTime now);
 // ---- clocks ----
 
 // The clocks the emulator reads, all in ns. MonotonicClock reads the system; tests substitute a
-// simulated clock (tests/support/simulated_clock.h).
+// simulated clock (tests/emulator/simulated_clock.h).
 class Clock {
  public:
   virtual ~Clock() = default;

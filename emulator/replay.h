@@ -14,7 +14,7 @@
 // Clock. replay_xtf(), replay_candump() and the `replay` command read the time and wait only
 // through the emulator's Clock (emulator/pacer.h), the same interface the run loop uses. The real
 // one (MonotonicClock) reads CLOCK_MONOTONIC and sleeps with clock_nanosleep(TIMER_ABSTIME); tests
-// pass a simulated clock (tests/support/simulated_clock.h) and check the deadlines exactly.
+// pass a simulated clock (tests/emulator/simulated_clock.h) and check the deadlines exactly.
 //
 // XTF timing (make_xtf_schedule). A ping's time is its header's Year..HSeconds (1/100 s
 // resolution, xtf::time_utc_ns). Relative times are kept as recorded wherever they increase.

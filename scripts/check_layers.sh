@@ -12,10 +12,15 @@
 #   autonomy <- autonomy, atr, drivers, common (the example agent: what a vehicle would run)
 #   mission  <- mission, autonomy, study, emulator, atr, sim, drivers, common (the closed loop in
 #               lock-step and survey scoring: offline, where the simulator meets the onboard side)
-#   tools    <- anything
+#   tools    <- anything (the commands)
 #   units/ (header-only constants, e.g. angles) may be included from every layer
-# The tests of the onboard side (tests/common, tests/atr, tests/autonomy) are held to their
-# layer's map too (plus tests/ support code): they build and run without the simulator.
+# Every test folder tests/LAYER/... is held to its layer's map plus tests/ (the test support and
+# helpers) and Catch2; tests/support to units and tests; tests/fuzz to every layer but tools. The
+# tests of emulator and mission may also use config: the scenarios they fly are YAML files, loaded
+# as a user's are.
+# The build enforces the same map (cmake/SonarloopTargets.cmake, include scopes): a target sees
+# the headers of the folders it links and no others; this check also catches an include that
+# the build allows through a link a layer should not have.
 # Third-party headers belong to one layer each: Embree to sim, yaml-cpp to config, cpp-httplib
 # and MPI to tools.
 # Usage: scripts/check_layers.sh [SOURCE_ROOT]
@@ -33,6 +38,8 @@ declare -A allowed=(
   [study]="study atr sim drivers common units"
   [autonomy]="autonomy atr drivers common units"
   [mission]="mission autonomy study emulator atr sim drivers common units"
+  [tools]="tools mission autonomy study emulator atr config sim drivers common units"
+  [units]="units"
 )
 
 # third-party header (first path component, or the file name) -> the layers that may include it
@@ -41,6 +48,7 @@ declare -A third_party=(
   [yaml-cpp]="config"
   [httplib.h]="tools"
   [mpi.h]="tools"
+  [catch2]="tests"
 )
 
 violations=()
@@ -62,16 +70,30 @@ check() {
       header=${BASH_REMATCH[1]}
       top=${header%%/*}
       [ -n "${third_party[$top]+set}" ] || continue
-      [[ " ${third_party[$top]} " == *" $layer "* ]] || violations+=("$file -> <$header>")
+      ok=0
+      for a in $layer $extra; do
+        [[ " ${third_party[$top]} " == *" $a "* ]] && ok=1
+      done
+      [ $ok = 1 ] || violations+=("$file -> <$header>")
     fi
   done < <(grep -rHE '^#include ["<]' "$folder" --include='*.h' --include='*.cpp' || true)
 }
 
 for layer in "${!allowed[@]}"; do
   check "$layer" "$layer"
+  extra=tests
+  case $layer in emulator | mission) extra="tests config" ;; esac
+  if [ -d "tests/$layer" ]; then check "tests/$layer" "$layer" "$extra"; fi
 done
-for layer in common atr autonomy; do
-  check "tests/$layer" "$layer" tests
+allowed[tests_support]="units"
+check tests/support tests_support tests
+allowed[fuzz]="mission autonomy study emulator atr config sim drivers common units"
+check tests/fuzz fuzz tests
+# every source folder is checked: a new one must be added to the map
+for d in */; do
+  d=${d%/}
+  case $d in build* | docs | scripts | cmake | tests) continue ;; esac
+  [ -n "${allowed[$d]+set}" ] || violations+=("$d/: a folder the layer map does not know")
 done
 
 for v in "${violations[@]}"; do
@@ -80,4 +102,4 @@ done
 if [ ${#violations[@]} -gt 0 ]; then
   exit 1
 fi
-echo "layers: no crossings (${#allowed[@]} layers and the onboard side's tests checked)"
+echo "layers: no crossings (every source and test folder checked)"

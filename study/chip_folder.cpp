@@ -245,10 +245,6 @@ Chip chip_from_gray8(const image::Gray8& g) {
   return c;
 }
 
-bool is_chip_image_name(const std::string& file_name) {
-  return is_image_name(fs::path(file_name));
-}
-
 Chip read_folder_chip(const ChipFolder& folder, std::size_t index,
                       const std::optional<ChipSize>& size) {
   const LabelledChip& c = folder.chips.at(index);

@@ -86,9 +86,6 @@ atr::Chip read_folder_chip(const ChipFolder& folder, std::size_t index,
 atr::LabelledChip read_chip_file(const std::string& path,
                                  const std::optional<ChipSize>& size = std::nullopt);
 
-// Whether a file name has a chip image extension (.png, .jpg, .jpeg; any letter case).
-bool is_chip_image_name(const std::string& file_name);
-
 // 8-bit grey pixels as float chip pixels 0..255.
 atr::Chip chip_from_gray8(const image::Gray8& g);
 

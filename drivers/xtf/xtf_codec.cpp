@@ -21,10 +21,6 @@ using wire::hex;
 // ---------------------------------------------------------------------------------------------
 // file header
 
-std::size_t encoded_file_header_size(const XtfFileHeader& header) {
-  return file_header_size_for(declared_channel_count(header));
-}
-
 std::vector<std::uint8_t> encode_file_header(const XtfFileHeader& header) {
   if (header.file_format != kFileFormat) {
     throw std::invalid_argument("XTF file header: FileFormat must be 0x7B, got " +

@@ -44,9 +44,6 @@ class XtfFormatError : public std::runtime_error {
 
 // ---- file header ----
 
-// Size of the encoded file header: file_header_size_for(declared_channel_count(header)), i.e.
-// 1024 for <= 6 channels.
-std::size_t encoded_file_header_size(const XtfFileHeader& header);
 // Encodes the file header (zero-filled, strings NUL-padded, ChanInfo[i] at 256 + 128 i). Throws
 // std::invalid_argument if a string is longer than its field, if file_format is not 0x7B, or if
 // chan_info has fewer entries than the channel counts declare or more than fit (more than

@@ -54,7 +54,7 @@ struct SonarDesc {
   double target_rms_slope = 0.15;  // rms micro-slope per component s of the specular term
   bool speckle = true;             // fully developed (exponential) speckle per bin
   bool noise = true;               // Mellen thermal noise in the receiver band
-  // Fidelity knobs (renderer.h): 0 = the default rule
+  // Fidelity knobs (RenderOptions, ping_renderer.h): 0 = the default rule
   int rays_per_bin = 0;      // vertical rays per range bin on a flat seabed
   int along_track_rays = 0;  // rays across the horizontal beam or strip
 };

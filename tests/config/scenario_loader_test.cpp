@@ -6,10 +6,12 @@
 #include "config/loader/scenario_loader.h"
 #include "tests/config/config_error_checks.h"
 #include "tests/config/scenario_checks.h"
+#include "tests/config/scene_loader_checks.h"
 
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -17,6 +19,7 @@
 #include "config/default_scenario.h"
 #include "config/loader/scene_loader.h"
 #include "config/loader/sonar_loader.h"
+#include "sim/render/chip_renderer.h"
 #include "sim/render/ping_renderer.h"
 #include "sim/scene/memory_estimate.h"
 #include "tests/support/temp_dir.h"
@@ -361,4 +364,36 @@ TEST_CASE("scenario_loader: a huge extent at a fine spacing and a huge ray fan a
                                           {"ping buffers", "more than memory_limit_gb 4 GB"});
   sonarloop::testing::expect_config_error(parse_scenario, "limit.yaml", "memory_limit_gb: 0.01\n",
                                           "memory_limit_gb", {"0.1 .. 10000"});
+}
+
+TEST_CASE(
+    "scenario_loader: the chip renderer's built-in seabed kinds are config/seabed_<kind>.yaml") {
+  const std::map<std::string, std::string> files = {{"flat", "seabed_flat.yaml"},
+                                                    {"ripples", "seabed_ripples.yaml"},
+                                                    {"clutter", "seabed_cluttered.yaml"},
+                                                    {"rocky", "seabed_rocky.yaml"}};
+  REQUIRE(sonarloop::render::builtin_dataset_seabed_names().size() == files.size());
+  for (const auto& name : sonarloop::render::builtin_dataset_seabed_names()) {
+    INFO(name);
+    const sonarloop::scene::SceneDesc a = sonarloop::render::builtin_dataset_seabed(name).desc;
+    const sonarloop::scene::SceneDesc b =
+        load_scenario(std::string(SONARLOOP_SOURCE_DIR) + "/config/" + files.at(name)).scene;
+    CHECK(a.seed == b.seed);
+    CHECK(a.water.depth_m == b.water.depth_m);
+    CHECK(a.water.temperature_c == b.water.temperature_c);
+    CHECK(a.water.salinity_ppt == b.water.salinity_ppt);
+    CHECK(a.seabed.grid_spacing_m == b.seabed.grid_spacing_m);
+    const auto& ea = a.seabed.elevation;
+    const auto& eb = b.seabed.elevation;
+    CHECK(ea.slope == eb.slope);
+    CHECK(ea.rms_m == eb.rms_m);
+    CHECK(ea.beta == eb.beta);
+    CHECK(ea.outer_scale_m == eb.outer_scale_m);
+    CHECK(ea.inner_scale_m == eb.inner_scale_m);
+    CHECK(ea.spacing_m == eb.spacing_m);
+    REQUIRE(a.seabed.regions.size() == 1);
+    REQUIRE(b.seabed.regions.size() == 1);
+    // the region, field by field (its centre and every texture parameter)
+    scene_loader_checks::check_same(a.seabed.regions[0], b.seabed.regions[0]);
+  }
 }

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "sim/render/sonar.h"
+#include "tests/sim/render/strip_sonar.h"
 #include "tests/support/temp_dir.h"
 
 using namespace sonarloop::config;
@@ -66,34 +67,6 @@ const std::vector<std::string> kKeys = {"name",
                                         "rays_per_bin",
                                         "along_track_rays"};
 
-// The documented pailhas_strip preset (config/sonars/pailhas_strip.yaml, config/reference.yaml).
-render::SonarDesc documented_pailhas_strip() {
-  render::SonarDesc d;
-  d.name = "pailhas_strip";
-  d.frequency_hz = 300e3;
-  d.source_level_db = 210;
-  d.pulse_length_s = 0;
-  d.chirp_bandwidth_hz = 0;
-  d.array_length_m = 0.5;
-  d.array_height_m = 0.006;
-  d.depression_deg = 15;
-  d.max_range_m = 50;
-  d.bin_size_m = 0.05;
-  d.ping_period_s = 0;
-  d.along_track = render::AlongTrackModel::kStrip;
-  d.along_track_resolution_m = 0.05;
-  d.sample_type = render::SampleType::kUint16;
-  d.tvg = std::nullopt;
-  d.gain_db = 0;
-  d.bottom_model = acoustics::BottomModel::kApl;
-  d.lambert_mu_db = -27;
-  d.speckle = true;
-  d.noise = true;
-  d.rays_per_bin = 0;
-  d.along_track_rays = 0;
-  return d;
-}
-
 double deg(double rad) {
   return rad * 180.0 / std::numbers::pi;
 }
@@ -104,7 +77,7 @@ double deg(double rad) {
 // defaults and keys
 
 TEST_CASE("sonar_loader: absent, empty and null give the pailhas_strip preset") {
-  const auto expect = documented_pailhas_strip();
+  const auto expect = sonarloop::testing::pailhas_strip_sonar();
   check_same_sonar(builtin_sonar("pailhas_strip"), expect);
   check_same_sonar(builtin_sonar(kDefaultSonarPreset), expect);
   for (const std::string text :

@@ -7,7 +7,7 @@
 
 #include "common/rng.h"
 #include "emulator/pacer.h"
-#include "tests/support/simulated_clock.h"
+#include "tests/emulator/simulated_clock.h"
 
 using namespace sonarloop;
 using namespace sonarloop::emulator;

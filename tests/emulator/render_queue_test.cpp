@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "emulator/render_queue.h"
-#include "tests/support/simulated_clock.h"
+#include "tests/emulator/simulated_clock.h"
 
 using namespace sonarloop::emulator;
 using sonarloop::testing::SimulatedClock;

@@ -19,8 +19,8 @@
 #include "drivers/net/udp_receiver.h"
 #include "drivers/net/udp_sender.h"
 #include "drivers/xtf/xtf_file.h"
+#include "tests/emulator/simulated_clock.h"
 #include "tests/emulator/time_units.h"
-#include "tests/support/simulated_clock.h"
 #include "tests/support/temp_dir.h"
 
 using namespace sonarloop;

@@ -12,9 +12,9 @@
 
 #include "atr/chip_cutter.h"
 #include "atr/waterfall.h"
-#include "config/loader/sonar_loader.h"
 #include "sim/render/chip_renderer.h"
 #include "tests/atr/synthetic_pings.h"
+#include "tests/sim/render/strip_sonar.h"
 
 using namespace sonarloop;
 
@@ -65,7 +65,7 @@ render::ChipDatasetSpec small_spec() {
   spec.classes = {targets::TargetType::kRockan, targets::TargetType::kCylinder};
   spec.seabeds = {render::builtin_dataset_seabed("flat")};
   spec.resolutions_m = {kRes_m};
-  spec.sonar = config::builtin_sonar("pailhas_strip");
+  spec.sonar = sonarloop::testing::pailhas_strip_sonar();
   spec.seed = 3;
   return spec;
 }

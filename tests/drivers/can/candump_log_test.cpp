@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "common/rng.h"
 #include "tests/support/temp_dir.h"
+#include "tests/support/test_rng.h"
 
 using namespace sonarloop::can;
 using sonarloop::testing::run_command;
@@ -127,7 +127,7 @@ TEST_CASE("candump writer: flush makes lines visible, errors name the file") {
 TEST_CASE("candump: writer output parses back exactly (seeded random frames)") {
   TempDir dir("candump-roundtrip");
   const std::string path = dir.file("random.log");
-  sonarloop::Rng rng(0xCA7);
+  sonarloop::testing::TestRng rng(0xCA7);
   std::vector<TimedCanFrame> sent;
   {
     CandumpLogWriter w(path);
@@ -163,7 +163,7 @@ TEST_CASE("candump: python-can's CanutilsLogReader reads our log, every frame ma
   TempDir dir("candump-python");
   const std::string path = dir.file("nav.log");
   const std::string out = dir.file("python.txt");
-  sonarloop::Rng rng(0xCA8);
+  sonarloop::testing::TestRng rng(0xCA8);
   std::vector<TimedCanFrame> sent;
   {
     CandumpLogWriter w(path);

@@ -2,7 +2,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "common/rng.h"
+#include "tests/support/test_rng.h"
 
 using namespace sonarloop::n2k;
 
@@ -44,7 +44,7 @@ TEST_CASE("n2k can id: PDU1 (addressed) ids carry the destination, not the PGN l
 }
 
 TEST_CASE("n2k can id: seeded random round trip over all fields") {
-  sonarloop::Rng rng(0x2000);
+  sonarloop::testing::TestRng rng(0x2000);
   for (int i = 0; i < 20000; ++i) {
     N2kId id;
     id.priority = static_cast<std::uint8_t>(rng.below(8));

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <string>
 
-#include "common/rng.h"
+#include "tests/support/test_rng.h"
 
 using namespace sonarloop::n2k;
 
@@ -47,12 +47,12 @@ void check_field(std::optional<double> original, std::optional<double> decoded, 
 }
 
 // Random value in [lo, hi), or nullopt one time in eight.
-std::optional<double> maybe(sonarloop::Rng& rng, double lo, double hi) {
+std::optional<double> maybe(sonarloop::testing::TestRng& rng, double lo, double hi) {
   if (rng.below(8) == 0) return std::nullopt;
   return rng.uniform(lo, hi);
 }
 
-std::uint8_t random_sid(sonarloop::Rng& rng) {
+std::uint8_t random_sid(sonarloop::testing::TestRng& rng) {
   const auto s = static_cast<std::uint8_t>(rng.below(254));
   return s == 253 ? kSidNotAvailable : s;
 }
@@ -238,7 +238,7 @@ TEST_CASE("n2k: decode rejects malformed frames with a reason") {
 }
 
 TEST_CASE("n2k: seeded random round trip of every PGN within half a resolution step") {
-  sonarloop::Rng rng(0x2001);
+  sonarloop::testing::TestRng rng(0x2001);
   const double pi = std::numbers::pi;
   for (int i = 0; i < kSamples; ++i) {
     {
@@ -316,7 +316,7 @@ TEST_CASE("n2k: seeded random round trip of every PGN within half a resolution s
 }
 
 TEST_CASE("n2k: system time from UNIX ns floors to 100 us and round-trips") {
-  sonarloop::Rng rng(0x2002);
+  sonarloop::testing::TestRng rng(0x2002);
   for (int i = 0; i < 2000; ++i) {
     const auto unix_ns = static_cast<std::int64_t>(rng.below(5'000'000'000'000'000'000ull));
     const SystemTime t = system_time_from_unix_ns(unix_ns, 3);

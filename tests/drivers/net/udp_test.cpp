@@ -9,8 +9,8 @@
 
 #include <sys/socket.h>
 
-#include "common/rng.h"
 #include "tests/support/skip.h"
+#include "tests/support/test_rng.h"
 
 using namespace sonarloop::net;
 
@@ -41,7 +41,7 @@ TEST_CASE("udp: 1000 datagrams of varying sizes up to 65507 bytes arrive intact 
   CHECK(rx.describe() == "udp on 127.0.0.1:" + std::to_string(rx.bound_port()));
 
   constexpr int kCount = 1000;
-  sonarloop::Rng rng(0x4E7);
+  sonarloop::testing::TestRng rng(0x4E7);
   std::vector<std::size_t> sizes(kCount);
   for (auto& s : sizes)
     s = 4 + static_cast<std::size_t>(rng.below(kMaxUdpDatagramBytes - 4 + 1));

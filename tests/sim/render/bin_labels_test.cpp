@@ -8,8 +8,8 @@
 #include <cstring>
 #include <memory>
 
-#include "config/loader/sonar_loader.h"
 #include "tests/sim/render/level_pose.h"
+#include "tests/sim/render/strip_sonar.h"
 
 using namespace sonarloop;
 using namespace sonarloop::render;
@@ -45,7 +45,7 @@ scene::SceneDesc box_scene(bool with_box, double x_near) {
 
 // the default sonar: 5 cm bins, a pulse one bin long (so a label is its own bin's)
 SonarDesc test_sonar(bool speckle) {
-  SonarDesc s = config::builtin_sonar("pailhas_strip");
+  SonarDesc s = sonarloop::testing::pailhas_strip_sonar();
   REQUIRE(s.bin_size_m == kBin_m);
   s.speckle = speckle;
   s.noise = speckle;

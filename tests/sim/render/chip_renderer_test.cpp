@@ -7,24 +7,16 @@
 #include <map>
 #include <string>
 
-#include "config/loader/scenario_loader.h"
+#include "tests/sim/render/strip_sonar.h"
 
 using namespace sonarloop;
 using namespace sonarloop::render;
 
 namespace {
 
-// The pailhas_strip preset's acoustic parameters (config/sonars/pailhas_strip.yaml).
+// the paper's sonar: the pailhas_strip preset
 SonarDesc strip_sonar() {
-  SonarDesc s;
-  s.name = "pailhas_strip";
-  s.frequency_hz = 300e3;
-  s.source_level_db = 210.0;
-  s.array_length_m = 0.5;
-  s.array_height_m = 0.006;
-  s.depression_deg = 15.0;
-  s.along_track = AlongTrackModel::kStrip;
-  return s;
+  return sonarloop::testing::pailhas_strip_sonar();
 }
 
 ChipDatasetSpec spec(std::vector<std::string> seabeds, std::vector<double> resolutions_m,
@@ -513,61 +505,4 @@ TEST_CASE("chips: bad specs are refused") {
   s = spec({"flat", "ripples"}, {0.05});
   s.seabeds[1].desc.water.depth_m = 40.0;
   CHECK_THROWS_WITH(ChipRenderer(s), Catch::Contains("water"));
-}
-
-TEST_CASE("chips: the built-in seabed kinds are config/seabed_<kind>.yaml") {
-  const std::map<std::string, std::string> files = {{"flat", "seabed_flat.yaml"},
-                                                    {"ripples", "seabed_ripples.yaml"},
-                                                    {"clutter", "seabed_cluttered.yaml"},
-                                                    {"rocky", "seabed_rocky.yaml"}};
-  REQUIRE(builtin_dataset_seabed_names().size() == files.size());
-  for (const auto& name : builtin_dataset_seabed_names()) {
-    INFO(name);
-    const scene::SceneDesc a = builtin_dataset_seabed(name).desc;
-    const scene::SceneDesc b =
-        config::load_scenario(std::string(SONARLOOP_SOURCE_DIR) + "/config/" + files.at(name))
-            .scene;
-    CHECK(a.seed == b.seed);
-    CHECK(a.water.depth_m == b.water.depth_m);
-    CHECK(a.water.temperature_c == b.water.temperature_c);
-    CHECK(a.water.salinity_ppt == b.water.salinity_ppt);
-    CHECK(a.seabed.grid_spacing_m == b.seabed.grid_spacing_m);
-    const auto& ea = a.seabed.elevation;
-    const auto& eb = b.seabed.elevation;
-    CHECK(ea.slope == eb.slope);
-    CHECK(ea.rms_m == eb.rms_m);
-    CHECK(ea.beta == eb.beta);
-    CHECK(ea.outer_scale_m == eb.outer_scale_m);
-    CHECK(ea.inner_scale_m == eb.inner_scale_m);
-    CHECK(ea.spacing_m == eb.spacing_m);
-    REQUIRE(a.seabed.regions.size() == 1);
-    REQUIRE(b.seabed.regions.size() == 1);
-    const auto& ra = a.seabed.regions[0];
-    const auto& rb = b.seabed.regions[0];
-    CHECK(ra.sediment == rb.sediment);
-    REQUIRE(ra.texture.ripples.has_value() == rb.texture.ripples.has_value());
-    REQUIRE(ra.texture.rocky.has_value() == rb.texture.rocky.has_value());
-    REQUIRE(ra.texture.clutter.has_value() == rb.texture.clutter.has_value());
-    if (ra.texture.ripples) {
-      CHECK(ra.texture.ripples->wavelength_m == rb.texture.ripples->wavelength_m);
-      CHECK(ra.texture.ripples->direction_deg == rb.texture.ripples->direction_deg);
-      CHECK(ra.texture.ripples->beta1 == rb.texture.ripples->beta1);
-      CHECK(ra.texture.ripples->beta == rb.texture.ripples->beta);
-      CHECK(ra.texture.ripples->height_m == rb.texture.ripples->height_m);
-    }
-    if (ra.texture.rocky) {
-      CHECK(ra.texture.rocky->rms_m == rb.texture.rocky->rms_m);
-      CHECK(ra.texture.rocky->beta == rb.texture.rocky->beta);
-      CHECK(ra.texture.rocky->anisotropy == rb.texture.rocky->anisotropy);
-      CHECK(ra.texture.rocky->direction_deg == rb.texture.rocky->direction_deg);
-      CHECK(ra.texture.rocky->outer_scale_m == rb.texture.rocky->outer_scale_m);
-    }
-    if (ra.texture.clutter) {
-      CHECK(ra.texture.clutter->density_per_m2 == rb.texture.clutter->density_per_m2);
-      CHECK(ra.texture.clutter->median_diameter_m == rb.texture.clutter->median_diameter_m);
-      CHECK(ra.texture.clutter->sigma_ln == rb.texture.clutter->sigma_ln);
-      CHECK(ra.texture.clutter->height_ratio == rb.texture.clutter->height_ratio);
-      CHECK(ra.texture.clutter->max_diameter_m == rb.texture.clutter->max_diameter_m);
-    }
-  }
 }

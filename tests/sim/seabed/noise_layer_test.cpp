@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "tests/support/spectral.h"
+#include "tests/sim/seabed/spectral.h"
 
 using namespace sonarloop;
 using namespace sonarloop::seabed;

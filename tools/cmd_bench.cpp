@@ -173,26 +173,23 @@ void bench_split(const config::Scenario& s) {
     render::PingLines lines;
     double t_gen = 0, t_isect = 0, t_shade = 0, t_bare = 0;
     std::uint64_t rays = 0;
-    std::vector<RTCRayHit> saved;
+    render::PingScratch saved;  // its ray buffer only
     for (std::size_t k = 0; k < poses.size(); ++k) {
       const auto view = r.view_for(sc, poses[k], {});
       auto t0 = Clock::now();
       const double alt = r.generate_rays(sc, *view, poses[k], {}, scratch);
       t_gen += seconds_since(t0);
-      saved = scratch.rays;
+      render::RaytraceRenderer::copy_rays(scratch, saved);
       t0 = Clock::now();
       render::RaytraceRenderer::intersect(*view, scratch);
       t_isect += seconds_since(t0);
       t0 = Clock::now();
       r.shade(sc, *view, 1, k, {}, alt, scratch, lines);
       t_shade += seconds_since(t0);
-      rays += saved.size();
+      rays += render::RaytraceRenderer::ray_count(saved);
       // bare Embree: the same rays, one rtcIntersect1 each, nothing else
-      RTCIntersectContext ctx;
-      rtcInitIntersectContext(&ctx);
       t0 = Clock::now();
-      for (auto& rh : saved)
-        rtcIntersect1(view->rtc_scene(), &ctx, &rh);
+      render::RaytraceRenderer::intersect_one_by_one(*view, saved);
       t_bare += seconds_since(t0);
     }
     const double total = t_gen + t_isect + t_shade;

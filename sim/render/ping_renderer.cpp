@@ -1,5 +1,7 @@
 #include "sim/render/ping_renderer.h"
 
+#include <embree3/rtcore.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -8,6 +10,11 @@
 #include "sim/render/raytrace_renderer.h"
 
 namespace sonarloop::render {
+
+PingScratch::PingScratch() = default;
+PingScratch::~PingScratch() = default;
+PingScratch::PingScratch(PingScratch&&) noexcept = default;
+PingScratch& PingScratch::operator=(PingScratch&&) noexcept = default;
 
 const char* renderer_name(RendererKind kind) {
   return kind == RendererKind::kRaytrace ? "raytrace" : "profile";

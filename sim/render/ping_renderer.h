@@ -22,8 +22,6 @@
 // Usage: make one renderer per sonar (make_ping_renderer), share it between threads (render() is
 // const and thread-safe) and give each thread its own PingScratch. The same scene, sonar, pose,
 // seed, ping index and options give byte-identical lines on any thread, in any order.
-#include <embree3/rtcore.h>
-
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -33,6 +31,7 @@
 
 #include "sim/frames.h"
 #include "sim/render/sonar.h"
+#include "sim/scene/embree_handles.h"
 #include "sim/scene/scene.h"
 #include "sim/seabed/height_sampler.h"
 
@@ -119,7 +118,14 @@ struct BinLabelScratch {
 };
 
 // Buffers of one rendering thread, sized on first use (no allocation per ping afterwards).
+// Made, moved and destroyed in ping_renderer.cpp, where Embree's RTCRayHit is complete (this
+// header does not include Embree: sim/scene/embree_handles.h).
 struct PingScratch {
+  PingScratch();
+  ~PingScratch();
+  PingScratch(PingScratch&&) noexcept;
+  PingScratch& operator=(PingScratch&&) noexcept;
+
   std::vector<double> accum[2];
   std::vector<float> ray_edge;  // sin(world depression) at the vertical ray edges
   std::vector<RTCRayHit> rays;  // the ping's rays (view-local coordinates), then their hits

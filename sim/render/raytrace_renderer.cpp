@@ -224,6 +224,21 @@ void RaytraceRenderer::intersect(const scene::SceneView& view, PingScratch& scra
   scratch.rays_cast += scratch.rays.size();
 }
 
+void RaytraceRenderer::copy_rays(const PingScratch& from, PingScratch& to) {
+  to.rays = from.rays;
+}
+
+void RaytraceRenderer::intersect_one_by_one(const scene::SceneView& view, PingScratch& scratch) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  for (RTCRayHit& rh : scratch.rays)
+    rtcIntersect1(view.rtc_scene(), &ctx, &rh);
+}
+
+std::size_t RaytraceRenderer::ray_count(const PingScratch& scratch) {
+  return scratch.rays.size();
+}
+
 void RaytraceRenderer::shade(const scene::Scene& scene, const scene::SceneView& view,
                              std::uint64_t seed, std::uint64_t ping_index,
                              const RenderOptions& options, double altitude, PingScratch& scratch,

@@ -18,6 +18,7 @@
 // rendered with depends only on the ping: output is byte-identical whatever was rendered
 // before. A view is built on the thread that first needs it (others needing it wait) with
 // view_build_threads threads.
+#include <cstddef>
 #include <future>
 #include <memory>
 #include <mutex>
@@ -58,6 +59,12 @@ class RaytraceRenderer final : public PingRenderer {
   double generate_rays(const scene::Scene& scene, const scene::SceneView& view, const Pose& pose,
                        const RenderOptions& options, PingScratch& scratch) const;
   static void intersect(const scene::SceneView& view, PingScratch& scratch);
+  // The bench's baseline on the same rays: copy_rays keeps a copy of the generated rays aside
+  // (into `to`'s ray buffer), intersect_one_by_one traces a scratch's rays with one rtcIntersect1
+  // each and nothing else (no packet, no context flags), ray_count says how many there are.
+  static void copy_rays(const PingScratch& from, PingScratch& to);
+  static void intersect_one_by_one(const scene::SceneView& view, PingScratch& scratch);
+  static std::size_t ray_count(const PingScratch& scratch);
   void shade(const scene::Scene& scene, const scene::SceneView& view, std::uint64_t seed,
              std::uint64_t ping_index, const RenderOptions& options, double altitude,
              PingScratch& scratch, PingLines& out) const;

@@ -15,6 +15,17 @@
 #include "units/angles.h"
 
 namespace sonarloop::scene {
+
+struct SceneView::Grid {
+  std::int64_t i0 = 0;  // first lattice row (north index)
+  std::int64_t j0 = 0;  // first lattice column (east index)
+  int ni = 0;
+  int nj = 0;
+  std::vector<float> vertices;         // (ni*nj + 1) x 3 (one spare for Embree's SSE loads)
+  std::vector<std::uint8_t> sediment;  // (ni x nj)
+  RTCGrid grid{};
+};
+
 namespace {
 
 // Scene ids: a counter, not randomness (ids never reach an output).

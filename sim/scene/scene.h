@@ -13,13 +13,13 @@
 // Coordinates: world frame W (frames.h: NED, z down). Inside a view, Embree works in
 // single precision relative to the view's local origin (its centre) to keep centimetre
 // precision kilometres from the world origin; intersect() converts.
-#include <embree3/rtcore.h>
 
 #include <memory>
 #include <mutex>
 #include <vector>
 
 #include "sim/frames.h"
+#include "sim/scene/embree_handles.h"
 #include "sim/scene/scene_desc.h"
 #include "sim/scene/target_bvh.h"
 #include "sim/seabed/seabed_model.h"
@@ -121,15 +121,7 @@ class SceneView {
   friend class Scene;
   SceneView() = default;
 
-  struct Grid {
-    std::int64_t i0 = 0;  // first lattice row (north index)
-    std::int64_t j0 = 0;  // first lattice column (east index)
-    int ni = 0;
-    int nj = 0;
-    std::vector<float> vertices;         // (ni*nj + 1) x 3 (one spare for Embree's SSE loads)
-    std::vector<std::uint8_t> sediment;  // (ni x nj)
-    RTCGrid grid{};
-  };
+  struct Grid;  // one Embree grid of heightmap tiles (scene.cpp)
 
   Box2 region_;
   Vec3 origin_W_ = Vec3::Zero();

@@ -6,12 +6,11 @@
 // Coordinates: Embree works in single precision relative to local_origin_W() (the rounded centre
 // of the targets' bounds), as SceneView does, to keep millimetre precision far from the world
 // origin. Geometry ids are indices into Scene::targets().
-#include <embree3/rtcore.h>
-
 #include <cstdint>
 #include <vector>
 
 #include "sim/frames.h"
+#include "sim/scene/embree_handles.h"
 
 namespace sonarloop::scene {
 

@@ -51,7 +51,7 @@ function(sonarloop_include_scope target scope folder)
 endfunction()
 
 # sonarloop_add_library(NAME SOURCES...): one static library per top-level folder (the folder of
-# the calling CMakeLists.txt's first path component: tools/web's library is in tools' scope).
+# the calling CMakeLists.txt's first path component: sim/render's sources are sonarloop_sim's).
 function(sonarloop_add_library name)
   add_library(${name} STATIC ${ARGN})
   file(RELATIVE_PATH rel ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR})

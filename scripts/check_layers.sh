@@ -12,6 +12,7 @@
 #   autonomy <- autonomy, atr, drivers, common (the example agent: what a vehicle would run)
 #   mission  <- mission, autonomy, study, emulator, atr, sim, drivers, common (the closed loop in
 #               lock-step and survey scoring: offline, where the simulator meets the onboard side)
+#   web      <- web, atr, drivers, common (the live view: event hub, page, HTTP server)
 #   tools    <- anything (the commands)
 #   units/ (header-only constants, e.g. angles) may be included from every layer
 # Every test folder tests/LAYER/... is held to its layer's map plus tests/ (the test support and
@@ -22,7 +23,7 @@
 # the headers of the folders it links and no others; this check also catches an include that
 # the build allows through a link a layer should not have.
 # Third-party headers belong to one layer each: Embree to sim, yaml-cpp to config, cpp-httplib
-# and MPI to tools.
+# to web, MPI to tools.
 # Usage: scripts/check_layers.sh [SOURCE_ROOT]
 set -euo pipefail
 root=${1:-$(cd "$(dirname "$0")/.." && pwd)}
@@ -38,7 +39,8 @@ declare -A allowed=(
   [study]="study atr sim drivers common units"
   [autonomy]="autonomy atr drivers common units"
   [mission]="mission autonomy study emulator atr sim drivers common units"
-  [tools]="tools mission autonomy study emulator atr config sim drivers common units"
+  [web]="web atr drivers common units"
+  [tools]="tools web mission autonomy study emulator atr config sim drivers common units"
   [units]="units"
 )
 
@@ -46,7 +48,7 @@ declare -A allowed=(
 declare -A third_party=(
   [embree3]="sim"
   [yaml-cpp]="config"
-  [httplib.h]="tools"
+  [httplib.h]="web"
   [mpi.h]="tools"
   [catch2]="tests"
 )

@@ -8,7 +8,7 @@ pkgs=(build-essential cmake ninja-build pkg-config
       can-utils python3-can python3-numpy python3-matplotlib python3-yaml iproute2
       openmpi-bin libopenmpi-dev)
 # for the tests only (scripts/test.sh sets SONARLOOP_BUILD_ALL=1): headless Chromium drives the
-# live web view in a real browser (test_tools_web_browser; it skips without it). Large: ~300 MB.
+# live web view in a real browser (test_web_browser; it skips without it). Large: ~300 MB.
 if [ "${SONARLOOP_BUILD_ALL:-0}" = 1 ]; then pkgs+=(chromium); fi
 missing=()
 for p in "${pkgs[@]}"; do

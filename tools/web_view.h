@@ -9,8 +9,8 @@
 #include "drivers/net/host_port.h"
 #include "emulator/run_stats.h"
 #include "tools/args.h"
-#include "tools/web/web_hub.h"
-#include "tools/web/web_server.h"
+#include "web/web_hub.h"
+#include "web/web_server.h"
 
 namespace sonarloop::tools {
 

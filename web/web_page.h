@@ -1,7 +1,7 @@
 #pragma once
 // The live operator view's page (docs/web.md): one HTML document with its script and style
 // inline, nothing fetched from elsewhere (the machines it runs on are offline). It reads
-// GET /events (tools/web/web_events.h) and draws
+// GET /events (web/web_events.h) and draws
 //   - the waterfall: one row per ping at the line rate, newest at the top, port to the left of
 //     the centre line and starboard to the right (near range at the centre), colours over the
 //     display span in dB re full scale with its colour bar; "Pause" freezes the scroll while

@@ -1,6 +1,6 @@
 #pragma once
 // The live operator view's event hub (docs/web.md): what the run loop or the onboard consumer
-// pushes, turned into Server-Sent Events for every browser that watches (tools/web/web_server.h
+// pushes, turned into Server-Sent Events for every browser that watches (web/web_server.h
 // serves them).
 //
 // Producers, never blocked by a browser:

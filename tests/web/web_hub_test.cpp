@@ -1,4 +1,4 @@
-// The live web view's hub and server (tools/web/): bounded per-client queues that drop their
+// The live web view's hub and server (web/): bounded per-client queues that drop their
 // oldest events and count them; a catch-up for a new client; real XTF pings turned into line
 // events; and over a real loopback HTTP connection, a browser that stops reading never blocks
 // the producer, loses its oldest events (counted) and still gets the newest; only the page, the
@@ -18,9 +18,9 @@
 
 #include "drivers/xtf/xtf_file.h"
 #include "tests/support/skip.h"
-#include "tools/web/web_events.h"
-#include "tools/web/web_hub.h"
-#include "tools/web/web_server.h"
+#include "web/web_events.h"
+#include "web/web_hub.h"
+#include "web/web_server.h"
 
 using namespace sonarloop;
 using namespace std::chrono_literals;

@@ -1,5 +1,5 @@
 // The only source file that includes cpp-httplib (a heavy header): see web_server.h.
-#include "tools/web/web_server.h"
+#include "web/web_server.h"
 
 #include <algorithm>
 #include <chrono>
@@ -9,7 +9,7 @@
 
 #include <sys/socket.h>
 
-#include "tools/web/web_page.h"
+#include "web/web_page.h"
 
 #ifdef SONARLOOP_HAVE_HTTPLIB
 #include <httplib.h>

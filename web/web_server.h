@@ -1,6 +1,6 @@
 #pragma once
 // The live operator view's HTTP server (docs/web.md): cpp-httplib on threads of its own, serving
-//   GET /            the page (tools/web/web_page.h): HTML, script and style inline, nothing
+//   GET /            the page (web/web_page.h): HTML, script and style inline, nothing
 //                    fetched from elsewhere
 //   GET /events      the hub's events as Server-Sent Events (text/event-stream), pushed as
 //                    they come; a comment line every second keeps an idle stream alive and
@@ -17,7 +17,7 @@
 #include <string>
 
 #include "drivers/net/host_port.h"
-#include "tools/web/web_hub.h"
+#include "web/web_hub.h"
 
 namespace sonarloop::web {
 

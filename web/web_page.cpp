@@ -1,4 +1,4 @@
-#include "tools/web/web_page.h"
+#include "web/web_page.h"
 
 namespace sonarloop::web {
 

@@ -1,4 +1,4 @@
-#include "tools/web/web_hub.h"
+#include "web/web_hub.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include "atr/stream_receiver.h"
 #include "atr/waterfall.h"
 #include "drivers/json/json_writer.h"
-#include "tools/web/web_events.h"
+#include "web/web_events.h"
 
 namespace sonarloop::web {
 namespace {

@@ -1,4 +1,4 @@
-#include "tools/web/web_events.h"
+#include "web/web_events.h"
 
 #include <algorithm>
 #include <cmath>

@@ -13,6 +13,7 @@
 #   mission  <- mission, autonomy, study, emulator, atr, sim, drivers, common (the closed loop in
 #               lock-step and survey scoring: offline, where the simulator meets the onboard side)
 #   web      <- web, atr, drivers, common (the live view: event hub, page, HTTP server)
+#   ranks    <- ranks, sim, common (chips over the ranks of an MPI job)
 #   tools    <- anything (the commands)
 #   units/ (header-only constants, e.g. angles) may be included from every layer
 # Every test folder tests/LAYER/... is held to its layer's map plus tests/ (the test support and
@@ -23,7 +24,7 @@
 # the headers of the folders it links and no others; this check also catches an include that
 # the build allows through a link a layer should not have.
 # Third-party headers belong to one layer each: Embree to sim, yaml-cpp to config, cpp-httplib
-# to web, MPI to tools.
+# to web, MPI to ranks.
 # Usage: scripts/check_layers.sh [SOURCE_ROOT]
 set -euo pipefail
 root=${1:-$(cd "$(dirname "$0")/.." && pwd)}
@@ -40,7 +41,8 @@ declare -A allowed=(
   [autonomy]="autonomy atr drivers common units"
   [mission]="mission autonomy study emulator atr sim drivers common units"
   [web]="web atr drivers common units"
-  [tools]="tools web mission autonomy study emulator atr config sim drivers common units"
+  [ranks]="ranks sim common units"
+  [tools]="tools ranks web mission autonomy study emulator atr config sim drivers common units"
   [units]="units"
 )
 
@@ -49,7 +51,7 @@ declare -A third_party=(
   [embree3]="sim"
   [yaml-cpp]="config"
   [httplib.h]="web"
-  [mpi.h]="tools"
+  [mpi.h]="ranks"
   [catch2]="tests"
 )
 

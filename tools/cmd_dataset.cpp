@@ -17,18 +17,24 @@
 #include "config/loader/sonar_loader.h"
 #include "drivers/image/png.h"
 #include "drivers/json/json_writer.h"
+#include "ranks/chip_ranks.h"
+#include "ranks/mpi_world.h"
 #include "sim/render/chip_renderer.h"
 #include "sim/targets/target_type.h"
 #include "tools/args.h"
 #include "tools/chip_labels.h"
-#include "tools/chip_ranks.h"
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
-#include "tools/mpi_world.h"
 #include "tools/progress.h"
 #include "tools/survey_training.h"
 
 namespace sonarloop::tools {
+namespace mpi = ranks::mpi;
+using ranks::dataset_jobs;
+using ranks::ranks_note;
+using ranks::render_chips_on_ranks;
+using ranks::serve_dataset;
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -344,7 +350,7 @@ int run_dataset(const std::vector<std::string>& argv) {
   spec.seabeds = dataset_seabeds_option(args.get_or("--seabed", kDefaultSeabeds));
   spec.renderer = renderer_option(args);
 
-  // under mpirun: rank 0 writes the dataset, the others render their share (tools/chip_ranks.h)
+  // under mpirun: rank 0 writes the dataset, the others render their share (ranks/chip_ranks.h)
   mpi::start();
   if (!mpi::is_root()) {
     install_stop_flag();

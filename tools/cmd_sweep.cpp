@@ -12,14 +12,14 @@
 
 #include "config/loader/scenario_loader.h"
 #include "config/loader/sonar_loader.h"
+#include "ranks/chip_ranks.h"
+#include "ranks/mpi_world.h"
 #include "sim/render/chip_renderer.h"
 #include "study/sweep.h"
 #include "tools/args.h"
 #include "tools/chip_options.h"
-#include "tools/chip_ranks.h"
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
-#include "tools/mpi_world.h"
 #include "tools/progress.h"
 #include "tools/sweep_ranks.h"
 #include "tools/sweep_run.h"
@@ -29,6 +29,9 @@
 #endif
 
 namespace sonarloop::tools {
+namespace mpi = ranks::mpi;
+using ranks::ranks_note;
+
 namespace {
 
 namespace fs = std::filesystem;

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "ranks/mpi_world.h"
 #include "tools/args.h"
 #include "tools/commands.h"
-#include "tools/mpi_world.h"
 
 namespace {
 
@@ -60,11 +60,11 @@ int main(int argc, char** argv) {
     } catch (const sonarloop::tools::UsageError& e) {
       std::fprintf(stderr, "sonarloop %s: %s\n(see 'sonarloop %s --help')\n", c.name, e.what(),
                    c.name);
-      return sonarloop::tools::mpi::end_after_error(2);
+      return sonarloop::ranks::mpi::end_after_error(2);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "sonarloop %s: error: %s\n", c.name, e.what());
       // under mpirun the other ranks would wait for this one forever: end them all
-      return sonarloop::tools::mpi::end_after_error(1);
+      return sonarloop::ranks::mpi::end_after_error(1);
     }
   }
   std::fprintf(stderr, "sonarloop: unknown command '%s' (see 'sonarloop --help')\n", name.c_str());

@@ -2,10 +2,12 @@
 
 #include <utility>
 
-#include "tools/chip_ranks.h"
+#include "ranks/chip_ranks.h"
 #include "tools/cli_helpers.h"
 
 namespace sonarloop::tools {
+using ranks::render_chips_on_ranks;
+
 namespace {
 
 // Renders every chip set of one slot in turn; false when one came back short (stopped).

@@ -1,5 +1,5 @@
 #pragma once
-// `sonarloop sweep` over the ranks of an MPI job (tools/chip_ranks.h): rank 0 runs the sweep as
+// `sonarloop sweep` over the ranks of an MPI job (ranks/chip_ranks.h): rank 0 runs the sweep as
 // in one process (training, scoring, files, output) and takes every chip it needs from
 // render_sweep_chips; the other ranks run serve_sweep, which makes the same render calls in the
 // same order, so that each renders its share of every chip set. The order is tools/sweep_run.cpp's:

@@ -12,13 +12,15 @@
 #include <string>
 
 #include "atr/fusion.h"
+#include "ranks/chip_ranks.h"
+#include "ranks/mpi_world.h"
 #include "sim/render/chip_renderer.h"
 #include "tools/chip_options.h"
-#include "tools/chip_ranks.h"
-#include "tools/mpi_world.h"
 #include "tools/sweep_ranks.h"
 
 namespace sonarloop::tools {
+namespace mpi = ranks::mpi;
+
 namespace {
 
 namespace fs = std::filesystem;

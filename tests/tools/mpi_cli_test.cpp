@@ -29,7 +29,7 @@ using sonarloop::testing::slurp;
 
 // a hung job fails the test instead of waiting for CTest's timeout; in a sanitizer build, Open
 // MPI's own allocations left at exit are not ours to report (our code's leaks show in the
-// one-process runs and tests/tools/chip_ranks_test.cpp)
+// one-process runs and tests/ranks/chip_ranks_test.cpp)
 const std::string kMpirun =
     "ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" OMPI_ALLOW_RUN_AS_ROOT=1 "
     "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 300 mpirun -np 2 --oversubscribe ";

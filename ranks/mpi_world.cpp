@@ -1,4 +1,4 @@
-#include "tools/mpi_world.h"
+#include "ranks/mpi_world.h"
 
 #include <sched.h>
 
@@ -18,7 +18,7 @@
 #include <mpi.h>
 #endif
 
-namespace sonarloop::tools::mpi {
+namespace sonarloop::ranks::mpi {
 namespace {
 
 // The state of this process's world: a world of one until start() brings MPI up.
@@ -189,4 +189,4 @@ int default_threads() {
   return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
-}  // namespace sonarloop::tools::mpi
+}  // namespace sonarloop::ranks::mpi

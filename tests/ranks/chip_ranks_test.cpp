@@ -1,14 +1,14 @@
-// Chips over MPI ranks (tools/chip_ranks.h) in a world of one: the chip message round trip
+// Chips over MPI ranks (ranks/chip_ranks.h) in a world of one: the chip message round trip
 // (every field, byte-exact), refused truncated and overlong messages, the dataset's job order,
 // and render_chips_on_ranks equal to render::render_chips. The same path over two real ranks
 // is tests/tools/mpi_cli_test.cpp.
-#include "tools/chip_ranks.h"
+#include "ranks/chip_ranks.h"
 
 #include <catch2/catch.hpp>
 #include <cstring>
 #include <vector>
 
-#include "tools/mpi_world.h"
+#include "ranks/mpi_world.h"
 
 using namespace sonarloop;
 using namespace sonarloop::render;
@@ -34,7 +34,7 @@ ChipDatasetSpec small_spec(ChipKind kind) {
 
 std::vector<std::byte> bytes_of(const ChipImage& c) {
   std::vector<std::byte> out;
-  tools::encode_chip(c, out);
+  ranks::encode_chip(c, out);
   return out;
 }
 
@@ -47,14 +47,14 @@ bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
 }  // namespace
 
 TEST_CASE("chip_ranks: a world of one without mpirun") {
-  tools::mpi::start();  // not launched by mpirun: stays a world of one
-  CHECK(tools::mpi::size() == 1);
-  CHECK(tools::mpi::rank() == 0);
-  CHECK(tools::mpi::is_root());
-  CHECK(tools::ranks_note().empty());
-  CHECK(tools::mpi::default_threads() >= 1);
-  CHECK(tools::mpi::end_after_error(3) == 3);
-  CHECK_FALSE(tools::mpi::message_waiting(0));
+  ranks::mpi::start();  // not launched by mpirun: stays a world of one
+  CHECK(ranks::mpi::size() == 1);
+  CHECK(ranks::mpi::rank() == 0);
+  CHECK(ranks::mpi::is_root());
+  CHECK(ranks::ranks_note().empty());
+  CHECK(ranks::mpi::default_threads() >= 1);
+  CHECK(ranks::mpi::end_after_error(3) == 3);
+  CHECK_FALSE(ranks::mpi::message_waiting(0));
 }
 
 TEST_CASE("chip_ranks: a chip survives the message round trip, every field") {
@@ -64,7 +64,7 @@ TEST_CASE("chip_ranks: a chip survives the message round trip, every field") {
     REQUIRE(!c.pixels.empty());
     REQUIRE(!c.truth.empty());
     const std::vector<std::byte> msg = bytes_of(c);
-    const ChipImage d = tools::decode_chip(msg);
+    const ChipImage d = ranks::decode_chip(msg);
     CHECK(d.params.index == c.params.index);
     CHECK(d.params.type == c.params.type);
     CHECK(d.params.seabed == c.params.seabed);
@@ -104,37 +104,37 @@ TEST_CASE("chip_ranks: truncated and overlong chip messages are refused") {
   std::vector<std::byte> msg = bytes_of(r.render(2, 0));
   for (std::size_t cut : {std::size_t{0}, std::size_t{7}, msg.size() / 2, msg.size() - 1}) {
     INFO("cut at " << cut);
-    CHECK_THROWS(tools::decode_chip(std::span<const std::byte>(msg.data(), cut)));
+    CHECK_THROWS(ranks::decode_chip(std::span<const std::byte>(msg.data(), cut)));
   }
   msg.push_back(std::byte{0});
-  CHECK_THROWS(tools::decode_chip(msg));
+  CHECK_THROWS(ranks::decode_chip(msg));
   // an array length far beyond the message
   std::vector<std::byte> bogus(200, std::byte{0xff});
-  CHECK_THROWS(tools::decode_chip(bogus));
+  CHECK_THROWS(ranks::decode_chip(bogus));
 }
 
 TEST_CASE("chip_ranks: the dataset's jobs run over indices, resolutions inner") {
-  const auto jobs = tools::dataset_jobs(3, 2);
+  const auto jobs = ranks::dataset_jobs(3, 2);
   REQUIRE(jobs.size() == 6);
   for (std::size_t j = 0; j < jobs.size(); ++j) {
     CHECK(jobs[j].index == j / 2);
     CHECK(jobs[j].resolution == static_cast<int>(j % 2));
   }
-  CHECK(tools::dataset_jobs(0, 3).empty());
+  CHECK(ranks::dataset_jobs(0, 3).empty());
 }
 
 TEST_CASE("chip_ranks: in a world of one, the same chips in the same order as render_chips") {
   const ChipRenderer r(small_spec(ChipKind::kHighlight));
-  const auto jobs = tools::dataset_jobs(6, 2);
+  const auto jobs = ranks::dataset_jobs(6, 2);
   std::vector<std::vector<std::byte>> direct, ranks;
   render_chips(r, jobs, 2, [&](const ChipImage& c) { direct.push_back(bytes_of(c)); });
-  const std::size_t n = tools::render_chips_on_ranks(
+  const std::size_t n = ranks::render_chips_on_ranks(
       r, jobs, 2, [&](const ChipImage& c) { ranks.push_back(bytes_of(c)); });
   CHECK(n == jobs.size());
   CHECK(ranks == direct);
   // a stop request ends it early with a prefix
   std::vector<std::vector<std::byte>> part;
-  const std::size_t got = tools::render_chips_on_ranks(
+  const std::size_t got = ranks::render_chips_on_ranks(
       r, jobs, 1, [&](const ChipImage& c) { part.push_back(bytes_of(c)); },
       [&] { return part.size() >= 3; });
   CHECK(got == part.size());

@@ -1,6 +1,6 @@
 #pragma once
 // The processes of one `sonarloop` run: rank 0 .. size-1 of an MPI job started by `mpirun`, or
-// a world of one. This is the only place that talks to MPI (tools/mpi_world.cpp); with MPI not
+// a world of one. This is the only place that talks to MPI (ranks/mpi_world.cpp); with MPI not
 // found at build time (SONARLOOP_HAVE_MPI unset) every function here is the one-process
 // version, so callers never need an #ifdef.
 //
@@ -20,7 +20,7 @@
 #include <span>
 #include <vector>
 
-namespace sonarloop::tools::mpi {
+namespace sonarloop::ranks::mpi {
 
 // Longest sleep between two polls of a pending message, in microseconds: a rank waiting for its
 // turn wakes at most 1000 times a second (each poll runs Open MPI's progress engine, a few
@@ -69,4 +69,4 @@ int end_after_error(int exit_code);
 // mpirun narrows when it binds ranks to cores), at least 1.
 int default_threads();
 
-}  // namespace sonarloop::tools::mpi
+}  // namespace sonarloop::ranks::mpi

@@ -1,4 +1,4 @@
-#include "tools/chip_ranks.h"
+#include "ranks/chip_ranks.h"
 
 #include <atomic>
 #include <condition_variable>
@@ -12,9 +12,9 @@
 #include <thread>
 #include <type_traits>
 
-#include "tools/mpi_world.h"
+#include "ranks/mpi_world.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::ranks {
 namespace {
 
 using render::ChipImage;
@@ -373,4 +373,4 @@ std::string ranks_note() {
   return mpi::size() > 1 ? " on " + std::to_string(mpi::size()) + " ranks" : "";
 }
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::ranks

@@ -1,5 +1,5 @@
 #pragma once
-// Chips rendered by all the ranks of an MPI job (tools/mpi_world.h) and handed over on rank 0 in
+// Chips rendered by all the ranks of an MPI job (ranks/mpi_world.h) and handed over on rank 0 in
 // job order, exactly as render::render_chips does in one process: `sonarloop dataset` and
 // `sonarloop sweep` on a cluster.
 //
@@ -26,7 +26,7 @@
 
 #include "sim/render/chip_renderer.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::ranks {
 
 // Renders `jobs` over the ranks and hands every chip to `sink` on rank 0, in job order; the
 // sink never runs on the other ranks. Every rank must make the same calls with the same jobs
@@ -57,4 +57,4 @@ render::ChipImage decode_chip(std::span<const std::byte> bytes);
 // " on N ranks" for a job of several ranks, "" otherwise: for the commands' summary lines.
 std::string ranks_note();
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::ranks

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
-#include <thread>
 
+#include "common/parallel_for.h"
 #include "drivers/xtf/xtf_codec.h"
 #include "emulator/xtf_ping.h"
 
@@ -72,19 +72,10 @@ void ScenePingProducer::prepare(std::int64_t first, int threads) {
       std::min(first + ahead_pings_, (setup_.trajectory->end_time() - 1) / setup_.ping_period_ns));
   const auto n = static_cast<int>(std::min<std::size_t>(
       pings.size(), static_cast<std::size_t>(std::max(1, std::min(threads, setup_.threads)))));
-  std::atomic<std::size_t> next{0};
-  auto work = [&](int w) {
-    for (std::size_t i = next++; i < pings.size(); i = next++) {
-      const Pose p = setup_.trajectory->state_at(pings[i] * setup_.ping_period_ns).pose;
-      setup_.renderer->prepare(*setup_.scene, p, {}, scratch_[static_cast<std::size_t>(w)]);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int w = 1; w < n; ++w)
-    pool.emplace_back(work, w);
-  work(0);
-  for (auto& t : pool)
-    t.join();
+  parallel_for(pings.size(), n, [&](std::size_t i, int w) {
+    const Pose p = setup_.trajectory->state_at(pings[i] * setup_.ping_period_ns).pose;
+    setup_.renderer->prepare(*setup_.scene, p, {}, scratch_[static_cast<std::size_t>(w)]);
+  });
 }
 
 void ScenePingProducer::work_ahead(std::int64_t k, int worker) {

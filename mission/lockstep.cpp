@@ -1,12 +1,10 @@
 #include "mission/lockstep.h"
 
 #include <cmath>
-#include <exception>
-#include <mutex>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
+#include "common/parallel_for.h"
 #include "drivers/xtf/xtf_codec.h"
 #include "emulator/emulator.h"
 #include "emulator/xtf_ping.h"
@@ -41,37 +39,6 @@ vehicle::VehicleState sim_state(const autonomy::VehicleState& a, double speed_m_
                       -speed_m_s * std::tan(a.pitch_rad));
   s.yaw_rate = a.turn_rate_rad_s;
   return s;
-}
-
-// Runs fn(i) for i in [0, n) on up to `threads` threads (the caller's among them); the first
-// exception is rethrown after every thread has ended.
-void parallel_for(std::size_t n, int threads, const std::function<void(std::size_t, int)>& fn) {
-  const int workers = static_cast<int>(std::min<std::size_t>(n, static_cast<std::size_t>(threads)));
-  if (workers <= 1) {
-    for (std::size_t i = 0; i < n; ++i)
-      fn(i, 0);
-    return;
-  }
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr error;
-  std::mutex error_mu;
-  auto work = [&](int w) {
-    try {
-      for (std::size_t i = next++; i < n; i = next++)
-        fn(i, w);
-    } catch (...) {
-      const std::lock_guard lock(error_mu);
-      if (!error) error = std::current_exception();
-      next = n;  // the others stop at their next item
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int w = 1; w < workers; ++w)
-    pool.emplace_back(work, w);
-  work(0);
-  for (auto& t : pool)
-    t.join();
-  if (error) std::rethrow_exception(error);
 }
 
 }  // namespace

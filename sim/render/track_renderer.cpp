@@ -1,11 +1,9 @@
 #include "sim/render/track_renderer.h"
 
 #include <algorithm>
-#include <atomic>
-#include <exception>
-#include <mutex>
-#include <thread>
 #include <vector>
+
+#include "common/parallel_for.h"
 
 namespace sonarloop::render {
 
@@ -22,32 +20,14 @@ void render_track(const scene::Scene& scene, const PingRenderer& renderer,
   std::vector<std::vector<TargetTrace>> traces(block);
   for (std::size_t begin = 0; begin < poses.size(); begin += block) {
     const std::size_t n = std::min(block, poses.size() - begin);
-    std::atomic<std::size_t> next{0};
-    std::exception_ptr error;
-    std::mutex error_mu;
-    auto work = [&](std::size_t worker) {
-      try {
-        for (std::size_t k = next++; k < n; k = next++) {
-          const std::size_t p = begin + k;
-          if (p + ahead < poses.size())
-            renderer.prepare(scene, poses[p + ahead], options.ping, scratch[worker]);
-          renderer.render(scene, poses[p], seed, options.first_ping_index + p, options.ping,
-                          scratch[worker], lines[k]);
-          traces[k] = scratch[worker].traces;
-        }
-      } catch (...) {
-        const std::lock_guard lock(error_mu);
-        if (!error) error = std::current_exception();
-        next = n;
-      }
-    };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t)
-      pool.emplace_back(work, static_cast<std::size_t>(t));
-    work(0);
-    for (auto& th : pool)
-      th.join();
-    if (error) std::rethrow_exception(error);
+    parallel_for(n, threads, [&](std::size_t k, int worker) {
+      PingScratch& s = scratch[static_cast<std::size_t>(worker)];
+      const std::size_t p = begin + k;
+      if (p + ahead < poses.size()) renderer.prepare(scene, poses[p + ahead], options.ping, s);
+      renderer.render(scene, poses[p], seed, options.first_ping_index + p, options.ping, s,
+                      lines[k]);
+      traces[k] = s.traces;
+    });
     for (std::size_t k = 0; k < n; ++k)
       sink(begin + k, lines[k], traces[k]);
     if (on_progress)

@@ -6,8 +6,8 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
+#include "common/parallel_for.h"
 #include "sim/core/integer_division.h"
 #include "sim/seabed/layer_rules.h"
 #include "sim/seabed/spectra.h"
@@ -240,23 +240,14 @@ void SeabedModel::prepare(double x0, double y0, double x1, double y1, int thread
   const std::int64_t tj1 = tile_of(lattice(y1) + 1);
   const std::int64_t nj = tj1 - tj0 + 1;
   const std::int64_t count = (ti1 - ti0 + 1) * nj;
-  std::atomic<std::int64_t> next{0};
   std::atomic<std::int64_t> done{0};
-  auto work = [&](bool report) {
-    for (std::int64_t k = next++; k < count; k = next++) {
-      tile(ti0 + k / nj, tj0 + k % nj, level);
-      const std::int64_t n_done = ++done;
-      if (report && on_progress)
-        on_progress(static_cast<double>(n_done) / static_cast<double>(count));
-    }
-  };
-  const int n = std::max(1, std::min<int>(threads, static_cast<int>(count)));
-  std::vector<std::thread> pool;
-  for (int k = 1; k < n; ++k)
-    pool.emplace_back(work, false);
-  work(true);
-  for (auto& th : pool)
-    th.join();
+  parallel_for(static_cast<std::size_t>(count), threads, [&](std::size_t item, int worker) {
+    const auto k = static_cast<std::int64_t>(item);
+    tile(ti0 + k / nj, tj0 + k % nj, level);
+    const std::int64_t n_done = ++done;
+    if (worker == 0 && on_progress)  // the calling thread reports
+      on_progress(static_cast<double>(n_done) / static_cast<double>(count));
+  });
 }
 
 }  // namespace sonarloop::seabed

@@ -7,7 +7,7 @@
 // JASA 103(3) 1671-1672 (1998): a cheaper fit within 10 % of Francois-Garrison.
 //
 // Both return the absorption coefficient in dB/km; divide by kMetresPerKilometre for the
-// dB/m that spreading.h and tvg.h take.
+// dB/m that tvg.h and the renderer take.
 namespace sonarloop::acoustics {
 
 inline constexpr double kMetresPerKilometre = 1000.0;

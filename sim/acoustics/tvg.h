@@ -4,9 +4,10 @@
 //   TVG(r) = n·log10 r + 2·α·r       dB, r slant range in m, α in dB/m
 // Source: docs/physics.md §3 (textbook rule, marked [M] there: no primary source was verified). The
 // exponents follow from this library's sonar equation: a point target's echo falls as r⁻⁴
-// (two-way spherical spreading, spreading.h), so n = 40; a seabed cell's echo as A/r⁴ with
-// A ∝ r (reverberation.h), so n = 30; n = 20 is the curve many commercial systems apply
-// before a user-defined correction. Validity: as spreading.h (far field, straight rays).
+// (two-way spherical spreading, tests/sim/acoustics/oracles/spreading.h), so n = 40; a seabed
+// cell's echo as A/r⁴ with A ∝ r (tests/sim/acoustics/oracles/reverberation.h), so n = 30; n = 20
+// is the curve many commercial systems apply before a user-defined correction. Validity: as
+// spherical spreading (far field, straight rays).
 namespace sonarloop::acoustics {
 
 // Spreading coefficients n of the TVG law.

@@ -7,6 +7,7 @@
 #include "common/rng.h"
 #include "sim/acoustics/beam_pattern.h"
 #include "sim/acoustics/noise.h"
+#include "sim/acoustics/speckle.h"
 #include "sim/acoustics/target_scattering.h"
 #include "sim/acoustics/target_specular.h"
 #include "sim/render/bin_labels.h"
@@ -240,7 +241,7 @@ void EchoModel::finish_lines(const RenderOptions& options, std::uint64_t seed,
       Rng rng(seed, RngStream::kSpeckle, ping_index, static_cast<std::uint64_t>(side));
       for (int k = k0; k < k1; ++k) {
         const auto i = static_cast<std::size_t>(k);
-        line[i] = static_cast<float>(acc[i] * rng.exponential(1.0));
+        line[i] = static_cast<float>(acoustics::apply_speckle(acc[i], rng.uniform_pos()));
       }
     } else {
       for (int k = k0; k < k1; ++k) {

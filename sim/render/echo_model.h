@@ -9,10 +9,10 @@
 //
 //   I = SL · G_v(δ) · G_h · σ(θ) · dA / r⁴ · e^(−2αr)
 //
-// SL source level (acoustics/sonar_equation.h), G_v the two-way vertical pattern about the
-// depression axis and G_h the horizontal one (acoustics/beam_pattern.h), σ the backscattering
-// cross-section per unit area per steradian at the local grazing angle θ (APL-UW TR 9407 or
-// Lambert, acoustics/backscatter_table.h; a target facet's Lambert μ·cos²θ,
+// SL source level (in dB: tests/sim/acoustics/oracles/sonar_equation.h), G_v the two-way vertical
+// pattern about the depression axis and G_h the horizontal one (acoustics/beam_pattern.h), σ the
+// backscattering cross-section per unit area per steradian at the local grazing angle θ (APL-UW TR
+// 9407 or Lambert, acoustics/backscatter_table.h; a target facet's Lambert μ·cos²θ,
 // acoustics/target_scattering.h, plus the specular term of acoustics/target_specular.h when the
 // sonar asks for it), dA the area of the element, α the Francois–Garrison absorption
 // (acoustics/absorption.h). For an element seen under a vertical angle dδ across a horizontal

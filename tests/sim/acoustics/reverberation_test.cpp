@@ -1,10 +1,10 @@
-#include "sim/acoustics/reverberation.h"
+#include "tests/sim/acoustics/oracles/reverberation.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
 
 #include "sim/acoustics/bottom_backscatter_lambert.h"
-#include "sim/acoustics/spreading.h"
+#include "tests/sim/acoustics/oracles/spreading.h"
 
 using namespace sonarloop::acoustics;
 using Catch::Matchers::WithinAbs;

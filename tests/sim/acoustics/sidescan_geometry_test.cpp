@@ -1,4 +1,4 @@
-#include "sim/acoustics/sidescan_geometry.h"
+#include "tests/sim/acoustics/oracles/sidescan_geometry.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,12 +1,12 @@
-#include "sim/acoustics/sonar_equation.h"
+#include "tests/sim/acoustics/oracles/sonar_equation.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
 
 #include "sim/acoustics/beam_pattern.h"
-#include "sim/acoustics/reverberation.h"
-#include "sim/acoustics/spreading.h"
+#include "tests/sim/acoustics/oracles/reverberation.h"
+#include "tests/sim/acoustics/oracles/spreading.h"
 
 using namespace sonarloop::acoustics;
 using Catch::Matchers::WithinAbs;

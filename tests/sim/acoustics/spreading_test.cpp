@@ -1,4 +1,4 @@
-#include "sim/acoustics/spreading.h"
+#include "tests/sim/acoustics/oracles/spreading.h"
 
 #include <catch2/catch.hpp>
 

@@ -3,8 +3,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "sim/acoustics/reverberation.h"
-#include "sim/acoustics/spreading.h"
+#include "tests/sim/acoustics/oracles/reverberation.h"
+#include "tests/sim/acoustics/oracles/spreading.h"
 
 using namespace sonarloop::acoustics;
 using Catch::Matchers::WithinAbs;

@@ -9,7 +9,7 @@
 #include "sim/acoustics/apl_sediment.h"
 #include "sim/acoustics/beam_pattern.h"
 #include "sim/acoustics/bottom_backscatter_apl.h"
-#include "sim/acoustics/spreading.h"
+#include "tests/sim/acoustics/oracles/spreading.h"
 #include "tests/sim/render/level_pose.h"
 
 using namespace sonarloop;

@@ -14,6 +14,7 @@
 #               lock-step and survey scoring: offline, where the simulator meets the onboard side)
 #   web      <- web, atr, drivers, common (the live view: event hub, page, HTTP server)
 #   ranks    <- ranks, sim, common (chips over the ranks of an MPI job)
+#   products <- products, sim, drivers, common (what scene and render write: images, truth)
 #   tools    <- anything (the commands)
 #   units/ (header-only constants, e.g. angles) may be included from every layer
 # Every test folder tests/LAYER/... is held to its layer's map plus tests/ (the test support and
@@ -42,7 +43,8 @@ declare -A allowed=(
   [mission]="mission autonomy study emulator atr sim drivers common units"
   [web]="web atr drivers common units"
   [ranks]="ranks sim common units"
-  [tools]="tools ranks web mission autonomy study emulator atr config sim drivers common units"
+  [products]="products sim drivers common units"
+  [tools]="tools products ranks web mission autonomy study emulator atr config sim drivers common units"
   [units]="units"
 )
 

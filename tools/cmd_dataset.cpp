@@ -21,8 +21,8 @@
 #include "ranks/mpi_world.h"
 #include "sim/render/chip_renderer.h"
 #include "sim/targets/target_type.h"
+#include "study/chip_labels.h"
 #include "tools/args.h"
-#include "tools/chip_labels.h"
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
 #include "tools/progress.h"
@@ -304,10 +304,10 @@ void write_chip(DatasetFiles& files, const render::ChipImage& c,
   const fs::path dir = root / cls;
   if (files.made_dirs.insert(dir).second) fs::create_directories(dir);
   const fs::path tmp = dir / (std::string(".") + name + ".tmp");
-  write_chip_label_png(dir, name, c);  // <index>_label.png, before the chip it labels
+  study::write_chip_label_png(dir, name, c);  // <index>_label.png, before the chip it labels
   image::write_png_gray8(tmp.string(), c.cols, c.rows, c.pixels);
   fs::rename(tmp, dir / name);
-  const std::string fields = csv_fields(c, spec) + "," + chip_label_csv_fields(name, c);
+  const std::string fields = csv_fields(c, spec) + "," + study::chip_label_csv_fields(name, c);
   const std::string rel = cls + "/" + name;
   files.csvs[static_cast<std::size_t>(c.resolution)]->write_line(rel + "," + fields);
   if (files.all_csv) {

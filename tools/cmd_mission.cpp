@@ -2,7 +2,7 @@
 // process (mission/lockstep.h: reproducible, scored against the truth over any number of seeds),
 // or with --realtime as three child processes of this binary on loopback: the emulator (`run`),
 // the onboard consumer (`onboard`) and the agent (`autonomy`); then a summary and a JSON report
-// (tools/mission_report.h).
+// (mission/mission_report.h).
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <signal.h>
@@ -23,12 +23,12 @@
 #include "atr/contact.h"
 #include "drivers/json/json_writer.h"
 #include "drivers/net/unique_fd.h"
+#include "mission/mission_report.h"
 #include "tools/args.h"
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
 #include "tools/default_model.h"
 #include "tools/lockstep_missions.h"
-#include "tools/mission_report.h"
 #include "tools/output_file.h"
 #include "tools/scenario_source.h"
 
@@ -301,11 +301,11 @@ int run_realtime(const Args& args, const std::string& model,
     report.write_and_close("{\"error\": \"the agent wrote no report\"}\n");
     return 1;
   }
-  MissionSummary s;
-  report.write_and_close(mission_report_json(
+  mission::MissionSummary s;
+  report.write_and_close(mission::mission_report_json(
       agent_report, scenario, "\"run\": " + run_settings_json(args, scenario, rate, model, failure),
       &s));
-  print_mission_summary(s);
+  mission::print_mission_summary(s);
   std::fprintf(stderr, "mission: report %s\n", report_path.c_str());
   return failure.empty() ? 0 : 1;
 }

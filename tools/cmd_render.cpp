@@ -15,6 +15,9 @@
 #include "drivers/xtf/xtf_codec.h"
 #include "drivers/xtf/xtf_file.h"
 #include "emulator/xtf_ping.h"
+#include "products/render_truth.h"
+#include "products/waterfall.h"
+#include "products/waterfall_annotations.h"
 #include "sim/render/quantise.h"
 #include "sim/render/track_renderer.h"
 #include "sim/scene/scene.h"
@@ -23,10 +26,7 @@
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
 #include "tools/progress.h"
-#include "tools/render_truth.h"
 #include "tools/scenario_source.h"
-#include "tools/waterfall.h"
-#include "tools/waterfall_annotations.h"
 
 namespace sonarloop::tools {
 namespace {
@@ -146,9 +146,9 @@ emulator::PingNav ping_nav(std::size_t k, const Pose& pose, const render::PingLi
 
 // What the line's images and truth are made of, filled ping by ping.
 struct LineImages {
-  WaterfallData wf;
+  products::WaterfallData wf;
   std::vector<std::vector<render::TargetTrace>> traces_by_ping;  // to tell the targets' boxes apart
-  std::vector<TargetTruth> truth;                                // per target
+  std::vector<products::TargetTruth> truth;                      // per target
 };
 
 LineImages make_line_images(std::size_t n_pings, int bins, double bin_size_m, std::size_t targets) {
@@ -166,7 +166,7 @@ LineImages make_line_images(std::size_t n_pings, int bins, double bin_size_m, st
 // Ping k into the waterfall (relative amplitude, labels laid out as the amplitudes) and the truth.
 void add_ping(LineImages& li, std::size_t k, const render::SonarSetup& setup, double bin_size_m,
               const render::PingLines& lines, std::span<const render::TargetTrace> traces) {
-  WaterfallData& wf = li.wf;
+  products::WaterfallData& wf = li.wf;
   float* row = wf.amplitude.data() + k * 2 * static_cast<std::size_t>(setup.bins);
   for (int b = 0; b < setup.bins; ++b) {
     const double r = (b + 0.5) * bin_size_m;
@@ -180,21 +180,21 @@ void add_ping(LineImages& li, std::size_t k, const render::SonarSetup& setup, do
   std::copy(lines.port_label.begin(), lines.port_label.end(), label_row);
   std::copy(lines.stbd_label.begin(), lines.stbd_label.end(), label_row + setup.bins);
   li.traces_by_ping[k].assign(traces.begin(), traces.end());
-  add_ping_traces(li.truth, k, traces);
+  products::add_ping_traces(li.truth, k, traces);
 }
 
 // The slant- and ground-range waterfalls, the label image and their COCO annotations.
 void write_images(const std::filesystem::path& dir_out, const LineImages& li,
                   const scene::Scene& sc) {
-  write_waterfall_png((dir_out / "waterfall.png").string(), li.wf);
-  write_ground_waterfall_png((dir_out / "waterfall_ground.png").string(), li.wf);
-  write_label_png((dir_out / "labels.png").string(), li.wf);
-  std::vector<AnnotatedTarget> annotated;
+  products::write_waterfall_png((dir_out / "waterfall.png").string(), li.wf);
+  products::write_ground_waterfall_png((dir_out / "waterfall_ground.png").string(), li.wf);
+  products::write_label_png((dir_out / "labels.png").string(), li.wf);
+  std::vector<products::AnnotatedTarget> annotated;
   for (const auto& pt : sc.targets())
-    annotated.push_back(AnnotatedTarget{pt.desc.name, pt.desc.type});
-  write_coco_annotations((dir_out / "annotations.json").string(), li.wf,
-                         label_boxes(li.wf, li.traces_by_ping), annotated, "waterfall.png",
-                         "labels.png");
+    annotated.push_back(products::AnnotatedTarget{pt.desc.name, pt.desc.type});
+  products::write_coco_annotations((dir_out / "annotations.json").string(), li.wf,
+                                   products::label_boxes(li.wf, li.traces_by_ping), annotated,
+                                   "waterfall.png", "labels.png");
 }
 
 int run_render(const std::vector<std::string>& argv) {
@@ -265,7 +265,7 @@ int run_render(const std::vector<std::string>& argv) {
 
   // report: the images, truth.json and a line on stdout
   write_images(dir_out, images, sc);
-  RenderedLine line;
+  products::RenderedLine line;
   line.scenario = scenario.scene.name;
   line.seed = scenario.scene.seed;
   line.latitude_deg = scenario.scene.origin.latitude_deg;
@@ -281,7 +281,7 @@ int run_render(const std::vector<std::string>& argv) {
   line.renderer = render::renderer_name(renderer.kind());
   line.render_s = render_s;
   line.threads = threads;
-  write_render_truth_json((dir_out / "truth.json").string(), line, sc, images.truth);
+  products::write_render_truth_json((dir_out / "truth.json").string(), line, sc, images.truth);
   std::printf(
       "rendered %zu pings x 2 x %d bins at %.3g m in %.2f s (%s renderer, %d threads): "
       "%s\n",

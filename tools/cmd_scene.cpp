@@ -10,6 +10,7 @@
 #include "drivers/image/npy.h"
 #include "drivers/image/png.h"
 #include "drivers/json/json_writer.h"
+#include "products/scene_images.h"
 #include "sim/scene/scene.h"
 #include "sim/seabed/sediment.h"
 #include "sim/targets/target_type.h"
@@ -17,7 +18,6 @@
 #include "tools/commands.h"
 #include "tools/progress.h"
 #include "tools/scenario_source.h"
-#include "tools/scene_images.h"
 
 namespace sonarloop::tools {
 namespace {
@@ -115,9 +115,9 @@ Lattice output_lattice(const Args& args, const seabed::SeabedModel& sb, scene::B
 }
 
 // The seabed's elevation and sediment at the lattice points, north row by row.
-SceneImages sample_lattice(const seabed::SeabedModel& sb, const Lattice& lat) {
+products::SceneImages sample_lattice(const seabed::SeabedModel& sb, const Lattice& lat) {
   const double d = sb.spacing_m();
-  SceneImages img;
+  products::SceneImages img;
   img.rows = lat.rows;
   img.cols = lat.cols;
   img.spacing_m = lat.step * d;
@@ -152,8 +152,9 @@ struct BuildCost {
 };
 
 // scene.json: how to read the files, and what it cost.
-std::string scene_json(const scene::SceneDesc& desc, const SceneImages& img, const Lattice& lat,
-                       double d, std::pair<double, double> range, const BuildCost& cost) {
+std::string scene_json(const scene::SceneDesc& desc, const products::SceneImages& img,
+                       const Lattice& lat, double d, std::pair<double, double> range,
+                       const BuildCost& cost) {
   json::Writer w(true);
   w.begin_object().field("scenario", desc.name).field("seed", desc.seed);
   w.field("water_depth_m", desc.water.depth_m);
@@ -184,8 +185,8 @@ std::string scene_json(const scene::SceneDesc& desc, const SceneImages& img, con
       .field("max_m", range.second, 8)
       .end_object();
   w.key("sediments").begin_array();
-  for (const auto id : sediments_present(img)) {
-    const auto c = sediment_colour(id);
+  for (const auto id : products::sediments_present(img)) {
+    const auto c = products::sediment_colour(id);
     w.begin_object().field("id", id).field("name", std::string(seabed::sediment_table()[id].key));
     w.key("colour_rgb").begin_array().value(c[0]).value(c[1]).value(c[2]).end_array();
     w.end_object();
@@ -251,17 +252,17 @@ int run_scene(const std::vector<std::string>& argv) {
   const double build_peak_mib = peak_rss_mib();
 
   // sample the output lattice
-  SceneImages img = sample_lattice(sb, lat);
-  draw_targets(sc, view.get(), img);
+  products::SceneImages img = sample_lattice(sb, lat);
+  products::draw_targets(sc, view.get(), img);
 
   namespace fs = std::filesystem;
   const fs::path dir(*out_dir);
   fs::create_directories(dir);
   image::write_npy_f32((dir / "heightmap.npy").string(), static_cast<std::size_t>(lat.rows),
                        static_cast<std::size_t>(lat.cols), img.elevation_m);
-  const auto range = write_heightmap_png((dir / "heightmap.png").string(), img);
-  write_sediments_png((dir / "sediments.png").string(), img);
-  write_relief_png((dir / "relief.png").string(), img);
+  const auto range = products::write_heightmap_png((dir / "heightmap.png").string(), img);
+  products::write_sediments_png((dir / "sediments.png").string(), img);
+  products::write_relief_png((dir / "relief.png").string(), img);
   write_text(dir / "truth.json", truth_json(sc));
 
   BuildCost cost;

@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "drivers/json/json_writer.h"
+#include "mission/mission_report.h"
 #include "mission/mission_run.h"
 #include "tools/autonomy_io.h"
 #include "tools/cli_helpers.h"
-#include "tools/mission_report.h"
 #include "tools/onboard_output.h"
 #include "tools/output_file.h"
 #include "tools/progress.h"
@@ -94,7 +94,7 @@ int run_lockstep_missions(const Args& args, const std::string& model_path,
   std::vector<study::FrocCounts> froc, gate_froc;
   std::vector<std::pair<std::uint64_t, study::SurveyScore>> scores;
   std::string missions_json;
-  MissionSummary pooled;  // every seed's, added up (mission_done: all of them)
+  mission::MissionSummary pooled;  // every seed's, added up (mission_done: all of them)
   pooled.mission_done = true;
   bool stopped = false;
   const auto wall0 = std::chrono::steady_clock::now();
@@ -142,13 +142,14 @@ int run_lockstep_missions(const Args& args, const std::string& model_path,
     info.stopped = r.run.stopped;
     info.contacts_received = r.run.contacts.size();
     const std::string agent_report = agent_report_json(*r.agent, info);
-    MissionSummary summary;
-    const std::string mission_json = mission_report_json(
-        agent_report, r.scenario,
-        "\"seed\": " + std::to_string(seed) + ",\n  \"survey\": " + survey_score_json(r.score),
-        &summary, spec.score.match_radius_m);
+    mission::MissionSummary summary;
+    const std::string mission_json =
+        mission::mission_report_json(agent_report, r.scenario,
+                                     "\"seed\": " + std::to_string(seed) +
+                                         ",\n  \"survey\": " + mission::survey_score_json(r.score),
+                                     &summary, spec.score.match_radius_m);
     missions_json += (missions_json.empty() ? "" : ",\n") + mission_json;
-    pooled = add_summaries(pooled, summary);
+    pooled = mission::add_summaries(pooled, summary);
     tally.add(r.score);
     study::add_froc(froc, r.detector_froc);
     if (!r.gate_froc.empty()) study::add_froc(gate_froc, r.gate_froc);
@@ -156,7 +157,7 @@ int run_lockstep_missions(const Args& args, const std::string& model_path,
     const std::string stem = "seed_" + std::to_string(seed);
     write_text(out_dir, stem + "_contacts.jsonl", contacts);
     write_text(out_dir, stem + "_agent.log", events);
-    write_text(out_dir, stem + "_candidates.csv", candidates_csv(r.run.candidates));
+    write_text(out_dir, stem + "_candidates.csv", mission::candidates_csv(r.run.candidates));
     if (!quiet) {
       std::fprintf(stderr,
                    "mission: seed %llu: %zu pings, %zu contacts (%llu detections identified as "
@@ -166,14 +167,14 @@ int run_lockstep_missions(const Args& args, const std::string& model_path,
                    static_cast<unsigned long long>(r.run.onboard.clutter), r.run.mission_s,
                    seed_wall_s, r.run.mission_s / std::max(seed_wall_s, 1e-9),
                    r.run.onboard.classify_total_s);
-      print_mission_summary(summary);
+      mission::print_mission_summary(summary);
     }
     if (stopped) break;
   }
   const std::vector<study::SurveyRow> rows = study::survey_rows(tally);
   write_text(out_dir, "survey.csv", study::survey_rows_csv(rows));
-  write_text(out_dir, "survey_targets.csv", survey_targets_csv(scores));
-  write_text(out_dir, "survey_false_contacts.csv", survey_false_contacts_csv(scores));
+  write_text(out_dir, "survey_targets.csv", mission::survey_targets_csv(scores));
+  write_text(out_dir, "survey_false_contacts.csv", mission::survey_false_contacts_csv(scores));
   write_text(out_dir, "detector_froc.csv", study::froc_csv(froc));
   if (!gate_froc.empty()) write_text(out_dir, "gate_froc.csv", study::froc_csv(gate_froc));
   json::Writer settings;
@@ -185,11 +186,11 @@ int run_lockstep_missions(const Args& args, const std::string& model_path,
   settings.field("layout", layout);
   settings.end_object();
   std::string text = "{\n  \"run\": " + settings.str() +
-                     ",\n  \"summary\": " + mission_summary_json(pooled) +
-                     ",\n  \"survey\": " + survey_rows_json(rows) + ",\n  \"missions\": [\n" +
-                     missions_json + "]\n}\n";
+                     ",\n  \"summary\": " + mission::mission_summary_json(pooled) +
+                     ",\n  \"survey\": " + mission::survey_rows_json(rows) +
+                     ",\n  \"missions\": [\n" + missions_json + "]\n}\n";
   report.write_and_close(text);
-  print_survey_rows(rows);
+  mission::print_survey_rows(rows);
   std::fprintf(stderr, "mission: %zu mission%s in %.1f s wall; report %s, tables in %s\n",
                scores.size(), scores.size() == 1 ? "" : "s", seconds_since(wall0),
                report_path.c_str(), out_dir.string().c_str());

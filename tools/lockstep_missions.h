@@ -1,7 +1,7 @@
 #pragma once
 // `sonarloop mission` in lock-step (its default): every seed flown by mission/lockstep.h in this
 // process, scored against the truth (study/survey_score.h); one JSON report for all the seeds
-// (tools/mission_report.h) and the tables and per-seed files in --out.
+// (mission/mission_report.h) and the tables and per-seed files in --out.
 #include <string>
 
 #include "config/loader/scenario_loader.h"

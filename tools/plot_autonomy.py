@@ -20,7 +20,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def pool(missions):
-    """The missions' summaries added up, as `mission` pools them (tools/mission_report.cpp)."""
+    """The missions' summaries added up, as `mission` pools them (mission/mission_report.cpp)."""
     s = {}
     for m in missions:
         for key, value in m["summary"].items():

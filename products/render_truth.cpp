@@ -1,12 +1,12 @@
 // `sonarloop render`'s target truth (render_truth.h).
-#include "tools/render_truth.h"
+#include "products/render_truth.h"
 
 #include <fstream>
 
 #include "drivers/json/json_writer.h"
 #include "sim/targets/target_type.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::products {
 namespace {
 
 void extend(int& lo, int& hi, int v) {
@@ -108,4 +108,4 @@ void write_render_truth_json(const std::string& path, const RenderedLine& line,
   std::ofstream(path) << w.str() << '\n';
 }
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::products

@@ -1,13 +1,13 @@
 // `sonarloop run`'s console report (run_report.h).
-#include "tools/run_report.h"
+#include "emulator/run_report.h"
 
 #include <cstdio>
 #include <limits>
 
-namespace sonarloop::tools {
+namespace sonarloop::emulator {
 namespace {
 
-double ms(double ns) {
+double ms_of(double ns) {
   return ns * 1e-6;
 }
 
@@ -23,7 +23,7 @@ void print_run_summary(const emulator::RunStats& s, const char* how) {
                static_cast<unsigned long long>(s.pings_sent),
                static_cast<unsigned long long>(s.deadline_misses()),
                static_cast<unsigned long long>(s.pings_late),
-               ms(static_cast<double>(s.deadline_tolerance_ns)),
+               ms_of(static_cast<double>(s.deadline_tolerance_ns)),
                static_cast<unsigned long long>(s.pings_late_render),
                static_cast<unsigned long long>(s.pings_dropped));
   if (s.pings_stale || s.stale_episodes) {
@@ -36,14 +36,14 @@ void print_run_summary(const emulator::RunStats& s, const char* how) {
     std::fprintf(stderr,
                  "  lateness (send deadline -> datagram sent): p50 %.3f ms, p99 %.3f ms, max %.3f "
                  "ms\n",
-                 ms(s.ping_lateness.quantile_ns(0.5)), ms(s.ping_lateness.quantile_ns(0.99)),
-                 ms(static_cast<double>(s.ping_lateness.max_ns())));
+                 ms_of(s.ping_lateness.quantile_ns(0.5)), ms_of(s.ping_lateness.quantile_ns(0.99)),
+                 ms_of(static_cast<double>(s.ping_lateness.max_ns())));
     std::fprintf(stderr,
                  "  latency (ping time -> datagram sent, incl. the %.1f ms receive window): p50 "
                  "%.3f ms, p99 %.3f ms, max %.3f ms\n",
-                 s.send_delay_s * 1e3, ms(s.ping_latency.quantile_ns(0.5)),
-                 ms(s.ping_latency.quantile_ns(0.99)),
-                 ms(static_cast<double>(s.ping_latency.max_ns())));
+                 s.send_delay_s * 1e3, ms_of(s.ping_latency.quantile_ns(0.5)),
+                 ms_of(s.ping_latency.quantile_ns(0.99)),
+                 ms_of(static_cast<double>(s.ping_latency.max_ns())));
   }
   if (s.has_pose_source) {
     std::fprintf(stderr,
@@ -66,8 +66,8 @@ void print_run_summary(const emulator::RunStats& s, const char* how) {
                static_cast<unsigned long long>(s.nav_frames_withheld));
   if (s.nav_lateness.count()) {
     std::fprintf(stderr, "; lateness p50 %.3f ms, p99 %.3f ms, max %.3f ms",
-                 ms(s.nav_lateness.quantile_ns(0.5)), ms(s.nav_lateness.quantile_ns(0.99)),
-                 ms(static_cast<double>(s.nav_lateness.max_ns())));
+                 ms_of(s.nav_lateness.quantile_ns(0.5)), ms_of(s.nav_lateness.quantile_ns(0.99)),
+                 ms_of(static_cast<double>(s.nav_lateness.max_ns())));
   }
   std::fprintf(stderr, "\n");
   if (s.udp_datagrams) {
@@ -110,4 +110,4 @@ void print_run_setup(const emulator::Emulator& emu, const emulator::EmulatorOpti
   }
 }
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::emulator

@@ -1,4 +1,4 @@
-#include "tools/waterfall_annotations.h"
+#include "products/waterfall_annotations.h"
 
 #include <algorithm>
 #include <climits>
@@ -9,7 +9,7 @@
 
 #include "drivers/json/json_writer.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::products {
 namespace {
 
 using render::kLabelHighlight;
@@ -152,4 +152,4 @@ void write_coco_annotations(const std::string& path, const WaterfallData& w,
   if (!out) throw std::runtime_error("cannot write '" + path + "'");
 }
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::products

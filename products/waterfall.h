@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace sonarloop::tools {
+namespace sonarloop::products {
 
 struct WaterfallData {
   int bins = 0;  // per side
@@ -34,4 +34,4 @@ void write_label_png(const std::string& path, const WaterfallData& w);
 // water column) are left black.
 void write_ground_waterfall_png(const std::string& path, const WaterfallData& w);
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::products

@@ -1,4 +1,4 @@
-#include "tools/chip_labels.h"
+#include "study/chip_labels.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -6,7 +6,7 @@
 #include "atr/chip_label_name.h"
 #include "drivers/image/png.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::study {
 
 void write_chip_label_png(const std::filesystem::path& dir, const std::string& chip_file_name,
                           const render::ChipImage& chip) {
@@ -28,4 +28,4 @@ std::string chip_label_csv_fields(const std::string& chip_file_name,
          count(render::kLabelShadow);
 }
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::study

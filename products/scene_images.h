@@ -10,7 +10,7 @@
 #include "sim/frames.h"
 #include "sim/scene/scene.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::products {
 
 struct SceneImages {
   int rows = 0;  // along north; row 0 = southern edge
@@ -36,4 +36,4 @@ void write_relief_png(const std::string& path, const SceneImages& img);
 std::vector<int> sediments_present(const SceneImages& img);
 std::array<int, 3> sediment_colour(int sediment_id);
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::products

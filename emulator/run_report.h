@@ -5,7 +5,7 @@
 #include "emulator/emulator.h"
 #include "emulator/run_stats.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::emulator {
 
 // The sonar, the ping timing, the duration and every output, one line each.
 void print_run_setup(const emulator::Emulator& emu, const emulator::EmulatorOptions& o);
@@ -13,4 +13,4 @@ void print_run_setup(const emulator::Emulator& emu, const emulator::EmulatorOpti
 // The final statistics; `how` says how the run ended ("done", "stopped by SIGINT", ...).
 void print_run_summary(const emulator::RunStats& s, const char* how);
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::emulator

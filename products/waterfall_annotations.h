@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
+#include "products/waterfall.h"
 #include "sim/render/ping_renderer.h"
 #include "sim/targets/target_type.h"
-#include "tools/waterfall.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::products {
 
 // A labelled part of one target on one side, in waterfall.png pixels (column x, row y; the
 // box's corners are pixel indices, inclusive).
@@ -54,4 +54,4 @@ void write_coco_annotations(const std::string& path, const WaterfallData& w,
                             const LabelBoxes& boxes, std::span<const AnnotatedTarget> targets,
                             const std::string& image_file, const std::string& label_file);
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::products

@@ -1,4 +1,4 @@
-#include "tools/mission_report.h"
+#include "mission/mission_report.h"
 
 #include <cmath>
 #include <cstdio>
@@ -10,7 +10,7 @@
 #include "drivers/json/json_writer.h"
 #include "sim/targets/target_type.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::mission {
 namespace {
 
 struct Object {
@@ -39,7 +39,7 @@ std::vector<Object> read_objects(const autonomy::JsonLine& report) {
 }
 
 // Each target's nearest unmatched object within the radius (targets in order).
-std::vector<int> match(const config::Scenario& sc, std::vector<Object>& objects, double radius_m) {
+std::vector<int> match(const Scenario& sc, std::vector<Object>& objects, double radius_m) {
   std::vector<int> of_target(sc.scene.targets.size(), -1);
   for (std::size_t t = 0; t < sc.scene.targets.size(); ++t) {
     const Vec2 p = sc.scene.targets[t].position_m;
@@ -84,7 +84,7 @@ double fraction(int n, int d) {
 
 }  // namespace
 
-std::string mission_report_json(const std::string& agent_report, const config::Scenario& sc,
+std::string mission_report_json(const std::string& agent_report, const Scenario& sc,
                                 const std::string& extra_fields_json, MissionSummary* summary,
                                 double match_radius_m) {
   std::string error;
@@ -350,4 +350,4 @@ std::string survey_false_contacts_csv(
   return out;
 }
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::mission

@@ -1,4 +1,4 @@
-#include "tools/scene_images.h"
+#include "products/scene_images.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "drivers/image/png.h"
 #include "sim/seabed/sediment.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::products {
 namespace {
 
 std::size_t at(const SceneImages& img, int r, int c) {
@@ -141,4 +141,4 @@ void write_relief_png(const std::string& path, const SceneImages& img) {
   image::write_png_rgb8(path, img.cols, img.rows, rgb);
 }
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::products

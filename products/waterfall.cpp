@@ -1,4 +1,4 @@
-#include "tools/waterfall.h"
+#include "products/waterfall.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "drivers/image/png.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::products {
 namespace {
 
 struct Levels {
@@ -115,4 +115,4 @@ void write_ground_waterfall_png(const std::string& path, const WaterfallData& w)
   image::write_png_gray8(path, width, std::max(n, 1), px);
 }
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::products

@@ -13,7 +13,7 @@
 #include "sim/render/ping_renderer.h"
 #include "sim/scene/scene.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::products {
 
 // One target's extent in the line, in pings and samples of its side (-1: not seen).
 struct TargetTruth {
@@ -48,4 +48,4 @@ struct RenderedLine {
 void write_render_truth_json(const std::string& path, const RenderedLine& line,
                              const scene::Scene& sc, const std::vector<TargetTruth>& truth);
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::products

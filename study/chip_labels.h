@@ -6,7 +6,7 @@
 
 #include "sim/render/chip_renderer.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::study {
 
 // labels.csv columns after the chip's own: the label image's file name (in the chip's folder)
 // and how many pixels it labels highlight and shadow.
@@ -20,4 +20,4 @@ void write_chip_label_png(const std::filesystem::path& dir, const std::string& c
 // The values of kChipLabelCsvColumns for a chip, comma-separated.
 std::string chip_label_csv_fields(const std::string& chip_file_name, const render::ChipImage& chip);
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::study

@@ -16,10 +16,10 @@
 #include <string>
 
 #include "atr/onboard_pipeline.h"
-#include "config/loader/scenario_loader.h"
+#include "sim/scenario.h"
 #include "study/survey_score.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::mission {
 
 inline constexpr double kTargetMatchRadius_m = 3.0;
 
@@ -36,7 +36,7 @@ struct MissionSummary {
 
 // The mission report (JSON) from the agent's report text; *summary gets the totals. Throws
 // std::runtime_error when the agent's report does not parse.
-std::string mission_report_json(const std::string& agent_report, const config::Scenario& scenario,
+std::string mission_report_json(const std::string& agent_report, const Scenario& scenario,
                                 const std::string& extra_fields_json, MissionSummary* summary,
                                 double match_radius_m = kTargetMatchRadius_m);
 
@@ -69,4 +69,4 @@ std::string survey_targets_csv(std::span<const std::pair<std::uint64_t, study::S
 std::string survey_false_contacts_csv(
     std::span<const std::pair<std::uint64_t, study::SurveyScore>> s);
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::mission

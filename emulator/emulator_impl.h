@@ -19,6 +19,7 @@
 #include "common/geodesy.h"
 #include "drivers/n2k/sid.h"
 #include "emulator/emulator.h"
+#include "emulator/external_pose.h"
 #include "emulator/nav_frames.h"
 #include "emulator/ping_producer.h"
 #include "emulator/pose_source.h"
@@ -64,7 +65,6 @@ struct Emulator::Impl {
   std::unique_ptr<render::PingRenderer> renderer;
   std::unique_ptr<vehicle::Trajectory> trajectory;
   std::unique_ptr<vehicle::NavSensorModel> nav;
-  std::unique_ptr<vehicle::NavSensorModel> exact_nav;  // --pose-from: the pose as navigation
   xtf::XtfFileHeader header;
   std::vector<std::uint8_t> header_bytes;
   std::size_t packet_bytes = 0;
@@ -77,6 +77,7 @@ struct Emulator::Impl {
   std::vector<std::unique_ptr<can::CanTransport>> cans;
   std::unique_ptr<Recording> recording;
   std::unique_ptr<PoseSource> pose_source;
+  std::unique_ptr<ExternalPoseInput> external_pose;  // --pose-from: pings and navigation read it
   std::unique_ptr<ScenePingProducer> producer;
   std::unique_ptr<RenderQueue> queue;
 

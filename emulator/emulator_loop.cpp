@@ -110,12 +110,10 @@ void Emulator::Impl::turn_paced(NavSchedule& navs, std::int64_t& k, const Turn& 
 // the external pose's, exactly. Without a fresh external pose, only the PGNs that do not depend on
 // it stay in `due` (counted as withheld) and the solution is empty.
 vehicle::NavSolution Emulator::Impl::measure_nav(SimTime t, NavPgnMask& due) {
-  if (!pose_source) return nav->measure(trajectory->state_at(t));
-  // as the pings: the pose of the sample's own time less the delay
-  const std::optional<ExternalPose> ext = pose_source->pose_at(
-      pacer.wall_of(t) - from_seconds(options.pose_delay_s), from_seconds(options.stale_after_s));
-  const std::int64_t age = ext ? clock.now_ns() - ext->received_ns : -1;
-  if (!ext || age > from_seconds(options.stale_after_s)) {
+  if (!external_pose) return nav->measure(trajectory->state_at(t));
+  // as the pings: the pose of the sample's own time less the delay (external_pose.h)
+  const ExternalPoseInput::Reading r = external_pose->read(t);
+  if (!r.state) {
     // no pose to publish: only what does not depend on it
     const NavPgnMask kept = due & pose_free_pgns();
     stats.nav_frames_withheld += static_cast<std::uint64_t>(std::popcount(due & ~kept));
@@ -124,7 +122,7 @@ vehicle::NavSolution Emulator::Impl::measure_nav(SimTime t, NavPgnMask& due) {
     none.t = t;
     return none;
   }
-  vehicle::VehicleState state = merge_external_pose(trajectory->state_at(t), *ext);
+  vehicle::VehicleState state = *r.state;
   // an external pose without altitude: the altimeter's (the DVL's) reading of the scene, the
   // height above the seabed's large-scale relief (as the vehicle's depth planning sees it)
   if (!std::isfinite(state.altitude_m)) {
@@ -132,7 +130,7 @@ vehicle::NavSolution Emulator::Impl::measure_nav(SimTime t, NavPgnMask& due) {
     state.altitude_m =
         scenario.scene.water.depth_m - scene->seabed().base_elevation(p.x(), p.y()) - p.z();
   }
-  return exact_nav->measure(state);
+  return external_pose->navigation().measure(state);
 }
 
 void Emulator::Impl::publish_nav(const NavSchedule::Sample& sample) {

@@ -146,8 +146,6 @@ void Emulator::Impl::make_vehicle() {
   trajectory =
       std::make_unique<vehicle::Trajectory>(scenario.vehicle.trajectory, seabed_depth, progress);
   nav = std::make_unique<vehicle::NavSensorModel>(scenario.vehicle.nav, scenario.scene.seed);
-  exact_nav =
-      std::make_unique<vehicle::NavSensorModel>(vehicle::NavNoiseDesc{}, scenario.scene.seed);
 }
 
 // The XTF file header and the size of every ping packet (fixed by the sonar).
@@ -237,10 +235,13 @@ void Emulator::Impl::make_render_queue() {
   ps.ping_period_ns = period;
   ps.threads = options.threads;
   ps.prepare_ahead_m = kPrepareAhead_m;
-  ps.pose_source = pose_source.get();
-  ps.pacer = &pacer;
-  ps.stale_after_ns = from_seconds(options.stale_after_s);
-  ps.pose_delay_ns = from_seconds(options.pose_delay_s);
+  if (pose_source) {
+    external_pose = std::make_unique<ExternalPoseInput>(
+        *pose_source, pacer, clock, *trajectory, from_seconds(options.pose_delay_s),
+        from_seconds(options.stale_after_s), scenario.scene.seed);
+    ps.external = external_pose.get();
+    ps.pacer = &pacer;
+  }
   producer = std::make_unique<ScenePingProducer>(ps);
   queue =
       std::make_unique<RenderQueue>(*producer, options.ring_slots, options.threads, packet_bytes);

@@ -19,28 +19,12 @@ constexpr double kStartupPrepareStride_m = 1.0;
 
 }  // namespace
 
-vehicle::VehicleState merge_external_pose(vehicle::VehicleState state, const ExternalPose& pose) {
-  if (pose.has_position) {
-    state.pose.position_W.x() = pose.pose.position_W.x();
-    state.pose.position_W.y() = pose.pose.position_W.y();
-  }
-  if (pose.has_depth) state.pose.position_W.z() = pose.pose.position_W.z();
-  if (pose.has_heading) state.pose.yaw = pose.pose.yaw;
-  if (pose.has_attitude) {
-    state.pose.pitch = pose.pose.pitch;
-    state.pose.roll = pose.pose.roll;
-  }
-  state.altitude_m = pose.altitude_m;
-  return state;
-}
-
-ScenePingProducer::ScenePingProducer(const PingProducerSetup& setup)
-    : setup_(setup), exact_nav_(vehicle::NavNoiseDesc{}, setup.seed) {
+ScenePingProducer::ScenePingProducer(const PingProducerSetup& setup) : setup_(setup) {
   if (!setup_.renderer || !setup_.scene || !setup_.trajectory || !setup_.nav || !setup_.ltp ||
       !setup_.header || !setup_.clock || setup_.ping_period_ns <= 0) {
     throw std::invalid_argument("ScenePingProducer: incomplete setup");
   }
-  if (setup_.pose_source && !setup_.pacer) {
+  if (setup_.external && !setup_.pacer) {
     throw std::invalid_argument("ScenePingProducer: an external pose source needs the pacer");
   }
   scratch_.resize(static_cast<std::size_t>(std::max(1, setup_.threads)));
@@ -118,20 +102,17 @@ void ScenePingProducer::produce(std::int64_t k, int worker, PingSlot& slot) {
       slot.emitted = false;
       return;
     }
-    const std::int64_t now = setup_.clock->now_ns();
     // the pose of the ping's own time (less the delay), not the latest sample as it is
-    const std::int64_t tau = setup_.pacer->wall_of(t) - setup_.pose_delay_ns;
-    const std::optional<ExternalPose> ext =
-        setup_.pose_source->pose_at(tau, setup_.stale_after_ns, &truth.pose_extrapolated);
+    const ExternalPoseInput::Reading r = setup_.external->read(t);
     truth.external = true;
-    truth.pose_age_ns = ext ? now - ext->received_ns : -1;
-    if (!ext || truth.pose_age_ns > setup_.stale_after_ns) {
+    truth.pose_age_ns = r.age_ns;
+    truth.pose_extrapolated = r.extrapolated;
+    if (!r.state) {
       slot.emitted = false;  // stale: no ping until a fresh pose arrives
       return;
     }
-    // what the source lacks comes from the trajectory
-    state = merge_external_pose(setup_.trajectory->state_at(t), *ext);
-    nav_model = &exact_nav_;
+    state = *r.state;
+    nav_model = &setup_.external->navigation();
   } else {
     state = setup_.trajectory->state_at(t);
   }

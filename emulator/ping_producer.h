@@ -13,31 +13,26 @@
 // ground lines, or the ray tracer's view), so the scene is made ahead of the pings on the
 // workers themselves, off the path of the ping due now, and a ping rarely waits for it.
 //
-// External pose (--pose-from). The worker waits for the ping's wall time, takes the source's
-// latest pose and renders from it. Fields the source does not provide (its has_* flags) come
-// from the trajectory at t_k: position (north, east), depth, heading, pitch and roll; velocity
-// and yaw rate always do (no external source sends them). A pose older than stale_after (or none
-// yet) gives no ping (slot.emitted = false). The navigation recorded in the XTF ping is that
-// pose without added errors (it is the vehicle's own navigation). Poses are not known ahead:
-// what a ping reads is made when it is rendered.
+// External pose (--pose-from). The worker waits for the ping's wall time and renders from the
+// external pose of the ping's time (ExternalPoseInput, external_pose.h: the sequence the
+// navigation frames follow too): what the source does not send comes from the trajectory at t_k,
+// a pose older than stale_after (or none yet) gives no ping (slot.emitted = false), and the
+// navigation recorded in the XTF ping is that pose without added errors (it is the vehicle's own
+// navigation). Poses are not known ahead: what a ping reads is made when it is rendered.
 #include <atomic>
 #include <cstdint>
 #include <vector>
 
 #include "common/geodesy.h"
 #include "drivers/xtf/xtf_types.h"
+#include "emulator/external_pose.h"
 #include "emulator/pacer.h"
-#include "emulator/pose_source.h"
 #include "emulator/render_queue.h"
 #include "sim/render/ping_renderer.h"
 #include "sim/vehicle/nav_sensor.h"
 #include "sim/vehicle/trajectory.h"
 
 namespace sonarloop::emulator {
-
-// The state rendered and published with --pose-from: the trajectory's state at the same time
-// with every part the external pose provides (its has_* flags) replaced by it, and its altitude.
-vehicle::VehicleState merge_external_pose(vehicle::VehicleState state, const ExternalPose& pose);
 
 struct PingProducerSetup {
   const render::PingRenderer* renderer = nullptr;
@@ -51,12 +46,10 @@ struct PingProducerSetup {
   SimTime ping_period_ns = 0;
   int threads = 1;                // workers (one scratch each)
   double prepare_ahead_m = 10.0;  // trajectory mode: prepare pings this far ahead along track
-  // --pose-from (all three set, or none)
-  const PoseSource* pose_source = nullptr;
+  // --pose-from (both set, or none): each ping at the external pose of its time
+  // (external_pose.h), rendered once the pacer's wall clock reaches it
+  const ExternalPoseInput* external = nullptr;
   const Pacer* pacer = nullptr;
-  SimTime stale_after_ns = 2 * kNanosecondsPerSecond;
-  // each ping at the pose of (its due time - pose_delay_ns), emulator/pose_history.h
-  SimTime pose_delay_ns = kNanosecondsPerSecond / 10;
 };
 
 class ScenePingProducer final : public PingProducer {
@@ -72,7 +65,7 @@ class ScenePingProducer final : public PingProducer {
   // Stops waiting for ping times (end of the run).
   void cancel() override { cancelled_ = true; }
 
-  bool external() const { return setup_.pose_source != nullptr; }
+  bool external() const { return setup_.external != nullptr; }
   // Trajectory mode: how many pings ahead a worker prepares.
   std::int64_t prepare_ahead_pings() const { return ahead_pings_; }
   // Start-up: prepares what pings first .. first + prepare_ahead_pings() read, with `threads`
@@ -85,7 +78,6 @@ class ScenePingProducer final : public PingProducer {
   bool wait_for_ping_time(SimTime t);
 
   PingProducerSetup setup_;
-  vehicle::NavSensorModel exact_nav_;  // no errors: the external pose as navigation
   std::int64_t epoch_utc_ns_ = 0;
   std::int64_t ahead_pings_ = 1;
   std::vector<render::PingScratch> scratch_;  // one per worker (prepare() uses them too)

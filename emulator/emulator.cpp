@@ -87,16 +87,9 @@ void Emulator::Impl::shutdown() {
   // the renderers first, then the outputs, so that the recordings are complete
   if (queue) queue->stop();
   std::string errors;
-  for (auto& c : cans) {
+  for (auto& d : devices) {
     try {
-      c->flush();
-    } catch (const std::exception& e) {
-      errors += std::string(errors.empty() ? "" : "; ") + e.what();
-    }
-  }
-  if (recording) {
-    try {
-      recording->close();
+      d->close();
     } catch (const std::exception& e) {
       errors += std::string(errors.empty() ? "" : "; ") + e.what();
     }

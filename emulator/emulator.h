@@ -5,7 +5,8 @@
 // CAN, and records both.
 //
 // Threads
-//   publisher (the caller of run()): the only thread that sends and records. It merges two
+//   publisher (the caller of run()): the only thread that sends and records, through the
+//   output devices (device.h: the UDP stream, each CAN transport, the recorder). It merges two
 //     schedules in simulation time and paces them with absolute deadlines (pacer.h):
 //     - ping k: ping time t_k = k·T (T = ping period); its datagram is due at the send time
 //       s_k = t_k + W, W = the receive window 2·R/c (slant range R of the last sample, sound

@@ -18,6 +18,7 @@
 
 #include "common/geodesy.h"
 #include "drivers/n2k/sid.h"
+#include "emulator/device.h"
 #include "emulator/emulator.h"
 #include "emulator/external_pose.h"
 #include "emulator/nav_frames.h"
@@ -73,9 +74,8 @@ struct Emulator::Impl {
   SimTime end = 0;
   std::int64_t n_pings = 0;
 
-  std::unique_ptr<net::UdpSender> udp;
-  std::vector<std::unique_ptr<can::CanTransport>> cans;
-  std::unique_ptr<Recording> recording;
+  // the output devices (device.h), in the order they get each event: on the wire first
+  std::vector<std::unique_ptr<Device>> devices;
   std::unique_ptr<PoseSource> pose_source;
   std::unique_ptr<ExternalPoseInput> external_pose;  // --pose-from: pings and navigation read it
   std::unique_ptr<ScenePingProducer> producer;
@@ -87,8 +87,6 @@ struct Emulator::Impl {
   std::int64_t cpu_start_ns = 0;
   std::array<can::CanFrame, kNavPgnCount> frames{};
   n2k::N2kSid sid;
-  SimTime next_header_t = 0;
-  bool header_sent = false;
   bool pings_stale = false;  // inside a stale episode (pings)
   SimTime sim_reached = 0;
   RealtimeOutcome realtime;  // --realtime-priority's outcome
@@ -129,9 +127,7 @@ struct Emulator::Impl {
   vehicle::NavSolution measure_nav(SimTime t, NavPgnMask& due);
   void publish_ping(const PingSlot& slot, std::int64_t k);
   void note_stale_ping(const PingSlot& slot, std::int64_t k);
-  void send_ping_datagram(const PingSlot& slot, std::span<const std::uint8_t> packet);
   void drop_ping(std::int64_t k);
-  void check_recording();
 
   // emulator_stats.cpp
   void init_stats();

@@ -140,14 +140,9 @@ void Emulator::Impl::publish_nav(const NavSchedule::Sample& sample) {
   const vehicle::NavSolution solution = measure_nav(t, due);
   const std::int64_t utc = epoch_utc_ns + t;
   const std::size_t n = make_nav_frames(solution, ltp, utc, sid.current(), due, frames);
-  for (auto& c : cans)
-    for (std::size_t i = 0; i < n; ++i)
-      c->send(frames[i], utc);
-  if (recording) {
-    for (std::size_t i = 0; i < n; ++i)
-      recording->write_nav(frames[i], utc);
-    check_recording();
-  }
+  const std::span<const can::CanFrame> sample_frames(frames.data(), n);
+  for (auto& d : devices)
+    d->nav(sample_frames, utc);
   sid.advance();
   ++stats.nav_samples;
   stats.nav_frames += n;
@@ -179,23 +174,6 @@ void Emulator::Impl::note_stale_ping(const PingSlot& slot, std::int64_t k) {
   }
 }
 
-// The ping's datagram, preceded by the file header's when it is due (first, then every
-// kHeaderRepeatS of simulation time).
-void Emulator::Impl::send_ping_datagram(const PingSlot& slot,
-                                        std::span<const std::uint8_t> packet) {
-  if (!header_sent || slot.truth.t >= next_header_t) {
-    udp->send(header_bytes);
-    header_sent = true;
-    next_header_t = slot.truth.t + from_seconds(kHeaderRepeatS);
-    ++stats.udp_header_datagrams;
-    ++stats.udp_datagrams;
-    stats.udp_bytes += header_bytes.size();
-  }
-  udp->send(packet);
-  ++stats.udp_datagrams;
-  stats.udp_bytes += packet.size();
-}
-
 void Emulator::Impl::publish_ping(const PingSlot& slot, std::int64_t k) {
   sim_reached = std::max(sim_reached, slot.truth.t);
   if (!slot.emitted) {
@@ -210,7 +188,9 @@ void Emulator::Impl::publish_ping(const PingSlot& slot, std::int64_t k) {
     message(msg);
   }
   const std::span<const std::uint8_t> packet(slot.packet.data(), slot.packet_size);
-  if (udp) send_ping_datagram(slot, packet);
+  // the devices on the wire, then the in-process consumer; lateness is measured once they have it
+  for (auto& d : devices)
+    if (d->on_wire()) d->ping(slot, packet);
   if (hooks.on_ping) hooks.on_ping(packet);
   if (slot.truth.pose_extrapolated) ++stats.pings_extrapolated;
   if (pacer.paced()) {
@@ -223,19 +203,9 @@ void Emulator::Impl::publish_ping(const PingSlot& slot, std::int64_t k) {
       if (unrendered_at_open == k) ++stats.pings_late_render;
     }
   }
-  if (recording) {
-    recording->write_ping(slot);
-    check_recording();
-  }
+  for (auto& d : devices)
+    if (!d->on_wire()) d->ping(slot, packet);
   ++stats.pings_sent;
-}
-
-void Emulator::Impl::check_recording() {
-  // a write error (a full disk) stops the recording, not the run: said once, when it happens
-  if (!stats.recording_error.empty() || recording->error().empty()) return;
-  stats.recording_error = recording->error();
-  message("warning: --record stopped: " + stats.recording_error +
-          " (the run goes on; the recordings end with whole lines and packets)");
 }
 
 void Emulator::Impl::drop_ping(std::int64_t k) {

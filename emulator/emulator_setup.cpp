@@ -8,6 +8,9 @@
 
 #include "drivers/xtf/xtf_codec.h"
 #include "emulator/emulator_impl.h"
+#include "emulator/nav_can_device.h"
+#include "emulator/recorder_device.h"
+#include "emulator/sonar_udp_device.h"
 #include "emulator/xtf_ping.h"
 #include "sim/render/ping_renderer.h"
 
@@ -190,11 +193,12 @@ void Emulator::Impl::open_outputs() {
 // UDP, CAN, the recording and the pose source: errors name the option they come from.
 void Emulator::Impl::open_transports() {
   if (options.udp) {
-    udp = std::make_unique<net::UdpSender>(*options.udp, options.udp_send_buffer_bytes);
+    devices.push_back(std::make_unique<SonarUdpDevice>(*options.udp, options.udp_send_buffer_bytes,
+                                                       header_bytes, packet_bytes));
   }
   for (const std::string& spec : options.can_specs) {
     try {
-      cans.push_back(can::open_can_transport(spec));
+      devices.push_back(std::make_unique<NavCanDevice>(can::open_can_transport(spec)));
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(e.what());
     } catch (const std::exception& e) {
@@ -203,7 +207,11 @@ void Emulator::Impl::open_transports() {
                                                                     : what);
     }
   }
-  if (options.record_dir) recording = std::make_unique<Recording>(*options.record_dir, header);
+  if (options.record_dir) {
+    devices.push_back(
+        std::make_unique<RecorderDevice>(std::make_unique<Recording>(*options.record_dir, header),
+                                         [this](const std::string& w) { message(w); }));
+  }
   if (options.pose_from) {
     Clock* c = &clock;
     PoseSourceOptions pose_options;

@@ -30,10 +30,8 @@ void Emulator::Impl::update_stats(std::int64_t now) {
                                               : 0.0;
   stats.render_max_ms = static_cast<double>(queue->produce_max_ns()) * 1e-6;
   stats.tiles_made = scene->seabed().tiles_made();
-  if (udp) {
-    stats.udp_dropped = udp->dropped();
-  }
-  if (recording) stats.recorded_pings = recording->pings();
+  for (const auto& d : devices)
+    d->add_stats(stats);
   if (pose_source) {
     const PoseSourceStats p = pose_source->stats();
     stats.has_pose_source = true;
@@ -48,18 +46,9 @@ void Emulator::Impl::update_stats(std::int64_t now) {
 std::vector<std::string> Emulator::Impl::describe_outputs() const {
   std::vector<std::string> out;
   char buf[256];
-  if (udp) {
-    std::snprintf(buf, sizeof buf,
-                  "%s: one XTF ping per datagram (%zu bytes), file header (%zu bytes) first and "
-                  "every %.0f s",
-                  udp->describe().c_str(), packet_bytes, header_bytes.size(), kHeaderRepeatS);
-    out.emplace_back(buf);
-  }
-  for (const auto& c : cans)
-    out.push_back("can: " + c->describe() + " (NMEA 2000 navigation)");
-  if (recording) {
-    out.push_back("record: " + recording->dir() + "/{pings.xtf, nav.log, truth.csv}");
-  }
+  for (const auto& d : devices)
+    for (std::string& line : d->describe())
+      out.push_back(std::move(line));
   if (pose_source) {
     std::snprintf(buf, sizeof buf,
                   "pose from %s (pings at the pose of their time less %.3g s; "

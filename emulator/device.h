@@ -1,0 +1,46 @@
+#pragma once
+// The emulator's output devices: what the publisher (emulator.h) hands out, in simulation time
+// order, on its own thread, as ArduPilot's SITL and Gazebo's sensor plugins hand simulated
+// sensors' data to their outputs. One class and file per device, each behind this narrow
+// interface:
+//
+//   SonarUdpDevice   (sonar_udp_device.h)  pings -> XTF datagrams over UDP (--udp)
+//   NavCanDevice     (nav_can_device.h)    NMEA 2000 frames -> one CAN transport (--can, each)
+//   RecorderDevice   (recorder_device.h)   pings, frames and truth -> files (--record)
+//
+// The inputs are not devices: the external pose (--pose-from) is read through
+// ExternalPoseInput (external_pose.h) by the render workers and the publisher alike.
+//
+// Timing. A device on the wire (on_wire()) gets each event first; the publisher measures a
+// ping's lateness once they have all sent it, then hands it to the others (the recorder), whose
+// disk writes are not the stream's lateness. Adding a device touches no other device: it is
+// built in Emulator::Impl::open_transports and added to the list.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "drivers/can/can_frame.h"
+#include "emulator/render_queue.h"
+#include "emulator/run_stats.h"
+
+namespace sonarloop::emulator {
+
+class Device {
+ public:
+  virtual ~Device();
+  // A ping: its slot (truth, lines) and its encoded XTF packet.
+  virtual void ping(const PingSlot& slot, std::span<const std::uint8_t> packet);
+  // One navigation sample's NMEA 2000 frames, at UTC utc_ns.
+  virtual void nav(std::span<const can::CanFrame> frames, std::int64_t utc_ns);
+  // Whether the device sends on the wire (timed) rather than records.
+  virtual bool on_wire() const = 0;
+  // Its counters into the run's statistics (called with every statistics update).
+  virtual void add_stats(RunStats& stats) const;
+  // Lines for the run's set-up report.
+  virtual std::vector<std::string> describe() const = 0;
+  // The end of the run: flush and close (may be called again); throws std::exception on failure.
+  virtual void close();
+};
+
+}  // namespace sonarloop::emulator

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "units/angles.h"
+
 namespace sonarloop::autonomy {
 
 struct Point2 {
@@ -40,24 +42,16 @@ inline double bearing_rad(Point2 a, Point2 b) {
   return std::atan2(b.east_m - a.east_m, b.north_m - a.north_m);
 }
 
-// An angle wrapped to (-pi, pi].
-inline double wrap_pi(double a_rad) {
-  constexpr double kTwoPi = 2.0 * std::numbers::pi;
-  double w = std::fmod(a_rad + std::numbers::pi, kTwoPi);
-  if (w < 0) w += kTwoPi;
-  return w - std::numbers::pi;
-}
-
 // The unsigned angle between two headings, 0..pi.
 inline double heading_difference_rad(double a_rad, double b_rad) {
-  return std::fabs(wrap_pi(a_rad - b_rad));
+  return std::fabs(wrap_to_pi(a_rad - b_rad));
 }
 
 inline double degrees(double rad) {
-  return rad * 180.0 / std::numbers::pi;
+  return rad * kDegPerRad;
 }
 inline double radians(double deg) {
-  return deg * std::numbers::pi / 180.0;
+  return deg * kRadPerDeg;
 }
 
 }  // namespace sonarloop::autonomy

@@ -15,7 +15,7 @@ LegProgress leg_progress(const Leg& leg, Point2 p) {
 
 double los_heading_rad(const Leg& leg, Point2 p, double lookahead_m) {
   const LegProgress g = leg_progress(leg, p);
-  return wrap_pi(leg.heading_rad() - std::atan2(g.cross_track_m, lookahead_m));
+  return wrap_to_pi(leg.heading_rad() - std::atan2(g.cross_track_m, lookahead_m));
 }
 
 MissionPlan::MissionPlan(std::vector<Leg> survey, Point2 from, GuidanceParams params)

@@ -9,7 +9,7 @@ namespace {
 RelookPlan candidate(Point2 c, double h2, int side, std::uint64_t object,
                      const RelookParams& params) {
   RelookPlan r;
-  r.heading_rad = wrap_pi(h2);
+  r.heading_rad = wrap_to_pi(h2);
   r.side = side;
   // starboard of the leg is heading + 90°: for the contact to starboard the line is to port of C
   const double to_line = r.heading_rad + (side == 1 ? -0.5 : 0.5) * std::numbers::pi;

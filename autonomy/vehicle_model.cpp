@@ -34,8 +34,8 @@ VehicleState step_vehicle(const VehicleState& s, const VehicleCommand& c, const 
   n.t_s = s.t_s + dt_s;
   // heading: the shorter way round, at most the turn rate
   const double turn =
-      clamp_magnitude(wrap_pi(c.heading_rad - s.heading_rad), p.max_turn_rate_rad_s * dt_s);
-  n.heading_rad = wrap_pi(s.heading_rad + turn);
+      clamp_magnitude(wrap_to_pi(c.heading_rad - s.heading_rad), p.max_turn_rate_rad_s * dt_s);
+  n.heading_rad = wrap_to_pi(s.heading_rad + turn);
   n.turn_rate_rad_s = turn / dt_s;
   // depth: at most the vertical rate; pitch is the climb angle (+ nose up when rising)
   const double dz = clamp_magnitude(c.depth_m - s.depth_m, p.max_vertical_rate_m_s * dt_s);

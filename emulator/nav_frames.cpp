@@ -8,6 +8,7 @@
 
 #include "drivers/n2k/messages.h"
 #include "emulator/pacer.h"
+#include "units/angles.h"
 
 namespace sonarloop::emulator {
 
@@ -31,14 +32,6 @@ constexpr double kMaxDepthOffsetM = 32.764;
 std::optional<double> finite_or_none(double v) {
   if (std::isfinite(v)) return v;
   return std::nullopt;
-}
-
-// Angle wrapped to [-π, π).
-double wrap_pi(double a) {
-  constexpr double kTwoPi = 2.0 * std::numbers::pi;
-  a = std::fmod(a + std::numbers::pi, kTwoPi);
-  if (a < 0) a += kTwoPi;
-  return a - std::numbers::pi;
 }
 
 }  // namespace
@@ -116,7 +109,7 @@ std::size_t make_nav_frames(const vehicle::NavSolution& nav, const LocalTangentP
       case n2k::Attitude::kPgn: {
         n2k::Attitude m;
         m.sid = sid;
-        m.yaw_rad = finite_or_none(wrap_pi(nav.heading));
+        m.yaw_rad = finite_or_none(wrap_to_pi(nav.heading));
         m.pitch_rad = finite_or_none(nav.pitch);
         m.roll_rad = finite_or_none(nav.roll);
         out[n++] = n2k::encode(m, sa);

@@ -1,4 +1,5 @@
 #include "emulator/pose_history.h"
+#include "units/angles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,13 +7,8 @@
 
 namespace sonarloop::emulator {
 
-double wrap_two_pi(double a) {
-  const double r = std::fmod(a, 2.0 * std::numbers::pi);
-  return r < 0.0 ? r + 2.0 * std::numbers::pi : r;
-}
-
 double shortest_turn_rad(double a, double b) {
-  const double d = wrap_two_pi(b - a);
+  const double d = wrap_to_two_pi(b - a);
   return d > std::numbers::pi ? d - 2.0 * std::numbers::pi : d;
 }
 
@@ -44,7 +40,7 @@ std::array<double, N> PartTrack<N>::blend(const PartSample<N>& a, const PartSamp
     const double delta = angular_ && i == 0 ? shortest_turn_rad(a.v[k], b.v[k]) : b.v[k] - a.v[k];
     out[k] = a.v[k] + fraction * delta;
   }
-  if (angular_) out[0] = wrap_two_pi(out[0]);
+  if (angular_) out[0] = wrap_to_two_pi(out[0]);
   return out;
 }
 

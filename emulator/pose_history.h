@@ -99,8 +99,6 @@ class StampClock {
 
 // Angle difference b - a wrapped to (-π, π].
 double shortest_turn_rad(double a, double b);
-// An angle wrapped to [0, 2π).
-double wrap_two_pi(double a);
 
 extern template class PartTrack<1>;
 extern template class PartTrack<2>;

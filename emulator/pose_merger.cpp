@@ -243,7 +243,7 @@ bool PoseMerger::merge_n2k(const can::CanFrame& frame) {
       yaw += m->deviation_rad.value_or(0.0) + m->variation_rad.value_or(0.0);
     const std::int64_t t = now_ns_();
     std::lock_guard lock(mu_);
-    pose_.pose.yaw = wrap_two_pi(yaw);
+    pose_.pose.yaw = wrap_to_two_pi(yaw);
     pose_.has_heading = true;
     heading_.add(t, {pose_.pose.yaw});
     pose_.received_ns = t;
@@ -323,7 +323,7 @@ bool PoseMerger::merge_pose_datagram(std::span<const std::uint8_t> datagram) {
   if (p.has_depth) p.pose.position_W.z() = m->depth_m;
   p.altitude_m = m->altitude_m;
   p.has_heading = !std::isnan(m->heading_rad);
-  if (p.has_heading) p.pose.yaw = wrap_two_pi(m->heading_rad);
+  if (p.has_heading) p.pose.yaw = wrap_to_two_pi(m->heading_rad);
   p.has_attitude = !std::isnan(m->pitch_rad) && !std::isnan(m->roll_rad);
   if (p.has_attitude) {
     p.pose.pitch = m->pitch_rad;

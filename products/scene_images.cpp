@@ -7,6 +7,7 @@
 
 #include "drivers/image/png.h"
 #include "sim/seabed/sediment.h"
+#include "units/angles.h"
 
 namespace sonarloop::products {
 namespace {
@@ -111,8 +112,8 @@ void write_sediments_png(const std::string& path, const SceneImages& img) {
 
 void write_relief_png(const std::string& path, const SceneImages& img) {
   constexpr double kExaggeration = 3.0;
-  constexpr double kSunAzimuth = 315.0 * std::numbers::pi / 180.0;  // from the north-west
-  constexpr double kSunAltitude = 45.0 * std::numbers::pi / 180.0;
+  constexpr double kSunAzimuth = 315.0 * kRadPerDeg;  // from the north-west
+  constexpr double kSunAltitude = 45.0 * kRadPerDeg;
   // sun direction in (north, east, up)
   const Vec3 sun(std::cos(kSunAltitude) * std::cos(kSunAzimuth),
                  std::cos(kSunAltitude) * std::sin(kSunAzimuth), std::sin(kSunAltitude));

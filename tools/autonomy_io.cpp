@@ -88,7 +88,7 @@ void NavListener::run() {
           ++fix_.position_updates;
         }
       } else if (const auto* h = std::get_if<n2k::VesselHeading>(&*m)) {
-        if (h->heading_rad) fix_.heading_rad = autonomy::wrap_pi(*h->heading_rad);
+        if (h->heading_rad) fix_.heading_rad = wrap_to_pi(*h->heading_rad);
       } else if (const auto* d = std::get_if<n2k::WaterDepth>(&*m)) {
         if (d->depth_m) {
           fix_.altitude_m = *d->depth_m;

@@ -10,12 +10,12 @@
 #include "drivers/json/json_writer.h"
 #include "sim/render/chip_renderer.h"
 #include "tools/progress.h"
+#include "units/angles.h"
 
 namespace sonarloop::tools {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 void emit(const json::Writer& w) {
   std::printf("%s\n", w.str().c_str());
@@ -284,9 +284,9 @@ void bench_accuracy(const config::Scenario& s, bool full) {
       Pose p;
       const double north = -32.0 + 0.25 * k;
       p.position_W = Vec3(north, 0.0, probe.seabed_z(north, 0.0) - 6.0);
-      p.pitch = 4.0 * kDegToRad * std::sin(0.3 * k);
-      p.roll = 6.0 * kDegToRad * std::cos(0.2 * k);
-      p.yaw = 3.0 * kDegToRad * std::sin(0.1 * k);
+      p.pitch = 4.0 * kRadPerDeg * std::sin(0.3 * k);
+      p.roll = 6.0 * kRadPerDeg * std::cos(0.2 * k);
+      p.yaw = 3.0 * kRadPerDeg * std::sin(0.1 * k);
       c.poses.push_back(p);
     }
     cases.push_back(std::move(c));

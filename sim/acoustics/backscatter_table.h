@@ -14,6 +14,7 @@
 #include "sim/acoustics/apl_sediment.h"
 #include "sim/acoustics/bottom_backscatter_lambert.h"
 #include "sim/seabed/sediment.h"
+#include "units/angles.h"
 
 namespace sonarloop::acoustics {
 
@@ -24,7 +25,7 @@ enum class BottomModel {
 };
 
 // Default grid step: 0.05° in radians.
-inline constexpr double kBackscatterTableStepRad = 0.05 * std::numbers::pi / 180.0;
+inline constexpr double kBackscatterTableStepRad = 0.05 * kRadPerDeg;
 
 class BackscatterTable {
  public:

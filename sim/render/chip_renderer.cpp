@@ -56,12 +56,6 @@ constexpr double kReliefAcrossWindow_m = 0.1;
 constexpr double kMinClearanceFraction = 0.25;
 constexpr double kNadirBelowBase_m = 1.0;
 
-double wrap_deg(double a) {
-  a = std::fmod(a, 360.0);
-  if (a < 0.0) a += 360.0;
-  return a >= 360.0 ? 0.0 : a;
-}
-
 int pixels_for(double size_m, double resolution_m) {
   return std::max(1, static_cast<int>(std::lround(size_m / resolution_m)));
 }
@@ -162,8 +156,8 @@ ChipParams chip_params(const ChipDatasetSpec& spec, std::uint64_t index) {
   p.altitude_m = rng.uniform(spec.altitude_min_m, spec.altitude_max_m);
   const double ground = rng.uniform(spec.range_min_m, spec.range_max_m);
   p.ground_range_m = spec.kind == ChipKind::kShadow ? kShadowGroundRange_m : ground;
-  p.target_heading_deg = wrap_deg(rng.uniform(0.0, 360.0));
-  p.track_heading_deg = wrap_deg(rng.uniform(0.0, 360.0));
+  p.target_heading_deg = wrap_to_360_deg(rng.uniform(0.0, 360.0));
+  p.track_heading_deg = wrap_to_360_deg(rng.uniform(0.0, 360.0));
   p.side = static_cast<int>(rng.below(2));
   const double block_x = rng.uniform(0.0, kBlockSize_m);
   const double block_y = rng.uniform(0.0, kBlockSize_m);
@@ -180,7 +174,7 @@ ChipParams chip_params(const ChipDatasetSpec& spec, std::uint64_t index) {
              static_cast<std::uint64_t>(spec.look));
     const double altitude = pass.uniform(spec.altitude_min_m, spec.altitude_max_m);
     const double pass_ground = pass.uniform(spec.range_min_m, spec.range_max_m);
-    const double track = wrap_deg(pass.uniform(0.0, 360.0));
+    const double track = wrap_to_360_deg(pass.uniform(0.0, 360.0));
     const int side = static_cast<int>(pass.below(2));
     p.along_offset = pass.uniform(-0.5, 0.5);
     if (spec.look_geometry == LookGeometry::kIndependent) {
@@ -189,11 +183,11 @@ ChipParams chip_params(const ChipDatasetSpec& spec, std::uint64_t index) {
       p.track_heading_deg = track;
       p.side = side;
     } else if (spec.look % 2 == 1) {  // the reciprocal line, past the object's other side
-      p.track_heading_deg = wrap_deg(p.track_heading_deg + 180.0);
+      p.track_heading_deg = wrap_to_360_deg(p.track_heading_deg + 180.0);
     }
   }
   const double look_deg = p.track_heading_deg + (p.side == 1 ? 90.0 : -90.0);
-  p.aspect_deg = wrap_deg(p.target_heading_deg - look_deg);
+  p.aspect_deg = wrap_to_360_deg(p.target_heading_deg - look_deg);
   return p;
 }
 

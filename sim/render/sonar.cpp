@@ -6,6 +6,7 @@
 
 #include "sim/acoustics/absorption.h"
 #include "sim/acoustics/noise.h"
+#include "units/angles.h"
 
 namespace sonarloop::render {
 namespace {
@@ -57,8 +58,7 @@ SonarSetup make_sonar_setup(const SonarDesc& desc, const scene::WaterDesc& water
       desc.ping_period_s > 0.0 ? desc.ping_period_s : 2.0 * desc.max_range_m / s.sound_speed_m_s;
   s.along_track_resolution_m =
       desc.along_track_resolution_m > 0.0 ? desc.along_track_resolution_m : desc.bin_size_m;
-  s.array = {desc.array_length_m, desc.array_height_m,
-             desc.depression_deg * std::numbers::pi / 180.0};
+  s.array = {desc.array_length_m, desc.array_height_m, desc.depression_deg * kRadPerDeg};
   s.horizontal_beamwidth_rad =
       acoustics::beamwidth_3db_two_way_rad(desc.array_length_m, s.wavelength_m);
   s.horizontal_beam_integral_rad = horizontal_beam_integral(desc.array_length_m, s.wavelength_m);

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "sim/vehicle/angles.h"
+#include "units/angles.h"
 
 namespace sonarloop::vehicle {
 

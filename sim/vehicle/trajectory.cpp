@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "sim/vehicle/angles.h"
+#include "units/angles.h"
 
 namespace sonarloop::vehicle {
 

@@ -28,6 +28,7 @@
 #include "sim/render/sonar.h"
 #include "tests/support/allocation_counter.h"
 #include "tests/support/temp_dir.h"
+#include "units/angles.h"
 
 // Heap allocations are counted (tests/support/allocation_counter.h, also under ASan), to show
 // that make_xtf_ping reuses the buffers of its output.
@@ -43,7 +44,6 @@ using render::SampleType;
 
 // 2026-03-14T15:09:26.535897123Z
 constexpr std::int64_t kPingTimeNs = 1773500966LL * 1'000'000'000LL + 535'897'123LL;
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
 struct TypeCase {
   SampleType type;

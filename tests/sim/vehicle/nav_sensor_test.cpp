@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "common/rng.h"
-#include "sim/vehicle/angles.h"
 #include "sim/vehicle/trajectory.h"
 #include "tests/sim/vehicle/sample_moments.h"
+#include "units/angles.h"
 
 using namespace sonarloop;
 using namespace sonarloop::vehicle;

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "sim/vehicle/angles.h"
+#include "units/angles.h"
 
 using namespace sonarloop;
 using namespace sonarloop::vehicle;

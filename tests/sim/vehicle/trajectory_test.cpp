@@ -8,7 +8,6 @@
 #include <stdexcept>
 #include <vector>
 
-#include "sim/vehicle/angles.h"
 #include "units/angles.h"
 
 using namespace sonarloop;

@@ -11,10 +11,14 @@
 // The inputs are not devices: the external pose (--pose-from) is read through
 // ExternalPoseInput (external_pose.h) by the render workers and the publisher alike.
 //
+// A layer above the emulator adds its own with Emulator::add_device: the in-process onboard
+// consumer of `run --classify` and the live view of `run --web` (tools/), which this layer
+// cannot build.
+//
 // Timing. A device on the wire (on_wire()) gets each event first; the publisher measures a
 // ping's lateness once they have all sent it, then hands it to the others (the recorder), whose
-// disk writes are not the stream's lateness. Adding a device touches no other device: it is
-// built in Emulator::Impl::open_transports and added to the list.
+// disk writes are not the stream's lateness. Adding a device touches no other device: the
+// emulator's own are built in Emulator::Impl::open_transports, the others added before run().
 #include <cstdint>
 #include <span>
 #include <string>
@@ -37,6 +41,8 @@ class Device {
   virtual bool on_wire() const = 0;
   // Its counters into the run's statistics (called with every statistics update).
   virtual void add_stats(RunStats& stats) const;
+  // The run's statistics, at the live statistics' interval (EmulatorOptions::stats_interval_s).
+  virtual void stats(const RunStats& stats);
   // Lines for the run's set-up report.
   virtual std::vector<std::string> describe() const = 0;
   // The end of the run: flush and close (may be called again); throws std::exception on failure.

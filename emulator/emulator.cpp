@@ -111,6 +111,11 @@ Emulator::~Emulator() {
   if (impl_) impl_->shutdown();
 }
 
+void Emulator::add_device(std::unique_ptr<Device> device) {
+  if (!device) throw std::invalid_argument("add_device: no device");
+  impl_->devices.push_back(std::move(device));
+}
+
 RunStats Emulator::run() {
   return impl_->run();
 }

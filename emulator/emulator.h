@@ -51,6 +51,7 @@
 #include "drivers/net/host_port.h"
 #include "drivers/net/udp_sender.h"
 #include "drivers/xtf/xtf_types.h"
+#include "emulator/device.h"
 #include "emulator/pacer.h"
 #include "emulator/run_stats.h"
 #include "sim/render/ping_renderer.h"
@@ -91,13 +92,10 @@ struct EmulatorHooks {
   // Start-up information and warnings, one line each (default: stderr). With --pose-from it is
   // also called from the pose source's thread (its warnings: rejected poses, a lost connection).
   std::function<void(std::string_view)> message;
-  // Periodic statistics (default: none).
+  // Periodic statistics (default: none); devices get them too (Device::stats).
   std::function<void(const RunStats&)> on_stats;
   // Polled by the publisher; true stops the run (SIGINT/SIGTERM).
   std::function<bool()> stop_requested;
-  // Every ping as sent: the bytes of its XTF packet (its UDP datagram), on the publisher thread,
-  // for in-process consumers (`run --classify`). Must return quickly (copy and hand off).
-  std::function<void(std::span<const std::uint8_t>)> on_ping;
 };
 
 // Largest samples per side for which a two-channel ping of `bytes_per_sample` fits one UDP
@@ -122,6 +120,11 @@ class Emulator {
   ~Emulator();
   Emulator(const Emulator&) = delete;
   Emulator& operator=(const Emulator&) = delete;
+
+  // Adds a device of the caller's (device.h), before run(): it gets every event after the
+  // emulator's own devices (the UDP stream, the CAN transports, the recorder), and the periodic
+  // statistics; the emulator owns it from now on. `run --classify` and `run --web` add theirs.
+  void add_device(std::unique_ptr<Device> device);
 
   // Runs to the end of the duration or until stopped; returns the final statistics.
   RunStats run();

@@ -1,7 +1,7 @@
 // The publisher's loop (emulator_impl.h; the threads and the schedules are described in
 // emulator.h): pings and navigation samples merged in simulation time, paced with absolute
 // deadlines (pacer.h) or sent as fast as rendering allows (--rate max); each event sent to UDP
-// and CAN, handed to the on_ping hook and recorded.
+// and CAN, handed to the in-process consumers and recorded: to the devices, device.h.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -34,6 +34,8 @@ void Emulator::Impl::loop() {
     if (turn.now >= next_stats) {
       update_stats(turn.now);
       if (hooks.on_stats) hooks.on_stats(stats);
+      for (auto& d : devices)
+        d->stats(stats);
       next_stats =
           interval_ns == kNever ? kNever : next_deadline(next_stats, interval_ns, turn.now);
     }
@@ -188,10 +190,10 @@ void Emulator::Impl::publish_ping(const PingSlot& slot, std::int64_t k) {
     message(msg);
   }
   const std::span<const std::uint8_t> packet(slot.packet.data(), slot.packet_size);
-  // the devices on the wire, then the in-process consumer; lateness is measured once they have it
+  // the devices on the wire (the in-process consumers among them); lateness is measured once
+  // they have it
   for (auto& d : devices)
     if (d->on_wire()) d->ping(slot, packet);
-  if (hooks.on_ping) hooks.on_ping(packet);
   if (slot.truth.pose_extrapolated) ++stats.pings_extrapolated;
   if (pacer.paced()) {
     const std::int64_t sent = clock.now_ns();

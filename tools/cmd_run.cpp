@@ -181,8 +181,7 @@ int run_run(const std::vector<std::string>& argv) {
       GeoPoint{scenario.scene.origin.latitude_deg, scenario.scene.origin.longitude_deg},
       "sonarloop run");
   double next_print_s = print_every;
-  hooks.on_stats = [&web, &next_print_s, print_every](const emulator::RunStats& s) {
-    if (web) web->hub.push_stats(web_stats_of(s));
+  hooks.on_stats = [&next_print_s, print_every](const emulator::RunStats& s) {
     // with --web this is called every kWebStatsEveryS: print at the console's own interval
     constexpr double kSlackS = 1e-3;
     if (print_every <= 0 || s.wall_time_s + kSlackS < next_print_s) return;
@@ -193,13 +192,7 @@ int run_run(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "%s\n", line);
   };
   hooks.stop_requested = [] { return stop_requested(); };
-  std::unique_ptr<InProcessOnboard> onboard;  // --classify: fed from on_ping
-  if (model || web) {
-    hooks.on_ping = [&onboard, &web](std::span<const std::uint8_t> p) {
-      if (onboard) onboard->on_ping(p);
-      if (web) web->hub.push_datagram(p);  // never waits (a full queue drops, counted)
-    };
-  }
+  std::unique_ptr<InProcessOnboard> onboard;  // --classify: fed by its device
 
   if (!quiet) {
     std::fprintf(stderr, "sonarloop run: scenario '%s' (seed %llu), preparing the scene ...\n",
@@ -219,11 +212,13 @@ int run_run(const std::vector<std::string>& argv) {
   if (web) web->hub.push_datagram(file_header);
   if (model) {
     onboard = make_onboard(std::move(*model), scenario, args, emu, file_header, o.rate.max, web);
+    emu.add_device(std::make_unique<OnboardDevice>(*onboard));
     if (!quiet) {
       std::fprintf(stderr, "onboard: classifying with %s, contacts to %s\n", classify->c_str(),
                    onboard->contacts_destination().c_str());
     }
   }
+  if (web) emu.add_device(std::make_unique<WebViewDevice>(*web));  // after the consumer, as before
   if (!quiet) print_run_setup(emu, o);
   emulator::RunStats stats;
   try {

@@ -16,6 +16,7 @@
 #include "atr/packet_queue.h"
 #include "atr/subspace_classifier.h"
 #include "drivers/net/udp_sender.h"
+#include "emulator/device.h"
 
 namespace sonarloop::tools {
 
@@ -55,7 +56,7 @@ void print_onboard_stats(const char* who, const atr::OnboardStats& s,
 std::string onboard_stats_json(const atr::OnboardStats& s, const atr::PacketQueue* queue);
 
 // `run --classify`: the onboard pipeline on a thread of its own, fed with the emulator's pings
-// (EmulatorHooks::on_ping) through a queue, contacts to a file or stderr. Lossless: with
+// (OnboardDevice, below) through a queue, contacts to a file or stderr. Lossless: with
 // --rate max the emulator waits for a free queue slot (the output then depends only on the
 // scenario); paced, a full queue drops the ping (counted) rather than delay the emulator.
 class InProcessOnboard {
@@ -86,6 +87,22 @@ class InProcessOnboard {
   bool lossless_;
   std::thread thread_;
   std::string error_;
+};
+
+// `run --classify`: the in-process consumer as one of the emulator's devices
+// (emulator/device.h): every ping's packet copied into its queue. `onboard` must outlive the
+// emulator.
+class OnboardDevice final : public emulator::Device {
+ public:
+  explicit OnboardDevice(InProcessOnboard& onboard) : onboard_(onboard) {}
+  void ping(const emulator::PingSlot&, std::span<const std::uint8_t> packet) override {
+    onboard_.on_ping(packet);
+  }
+  bool on_wire() const override { return true; }
+  std::vector<std::string> describe() const override { return {}; }  // said by run itself
+
+ private:
+  InProcessOnboard& onboard_;
 };
 
 }  // namespace sonarloop::tools

@@ -96,4 +96,12 @@ double CpuMeter::percent() const {
   return wall > 0 ? 100.0 * cpu / wall : 0.0;
 }
 
+void WebViewDevice::ping(const emulator::PingSlot&, std::span<const std::uint8_t> packet) {
+  view_.hub.push_datagram(packet);
+}
+
+void WebViewDevice::stats(const emulator::RunStats& s) {
+  view_.hub.push_stats(web_stats_of(s));
+}
+
 }  // namespace sonarloop::tools

@@ -7,6 +7,7 @@
 
 #include "atr/onboard_pipeline.h"
 #include "drivers/net/host_port.h"
+#include "emulator/device.h"
 #include "emulator/run_stats.h"
 #include "tools/args.h"
 #include "web/web_hub.h"
@@ -40,6 +41,21 @@ web::WebStats web_stats_of(const atr::OnboardStats& s, double cpu_percent);
 
 // "  web: 2 viewers, 1234 events sent, 0 dropped (slow browsers), 0 pings not shown".
 void print_web_summary(const WebView& view);
+
+// `run --web`: the live view as one of the emulator's devices (emulator/device.h): every ping's
+// datagram and the run's statistics to the hub, which never waits (a full browser queue drops,
+// counted). `view` must outlive the emulator.
+class WebViewDevice final : public emulator::Device {
+ public:
+  explicit WebViewDevice(WebView& view) : view_(view) {}
+  void ping(const emulator::PingSlot& slot, std::span<const std::uint8_t> packet) override;
+  void stats(const emulator::RunStats& s) override;
+  bool on_wire() const override { return true; }
+  std::vector<std::string> describe() const override { return {}; }  // its URL is printed
+
+ private:
+  WebView& view_;
+};
 
 // CPU use of this process since construction, % of one core (for `onboard`).
 class CpuMeter {

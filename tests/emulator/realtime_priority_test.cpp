@@ -13,6 +13,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -27,6 +28,19 @@ using namespace sonarloop;
 using namespace sonarloop::emulator;
 
 namespace {
+
+// Calls `fn` on the publisher thread with every ping it sends, as a device on the wire does
+// (emulator/device.h).
+class PingProbe final : public Device {
+ public:
+  explicit PingProbe(std::function<void()> fn) : fn_(std::move(fn)) {}
+  void ping(const PingSlot&, std::span<const std::uint8_t>) override { fn_(); }
+  bool on_wire() const override { return true; }
+  std::vector<std::string> describe() const override { return {}; }
+
+ private:
+  std::function<void()> fn_;
+};
 
 constexpr int kCapIpcLock = 14;  // linux/capability.h
 constexpr int kCapSysNice = 23;
@@ -181,13 +195,13 @@ TEST_CASE("emulator --realtime-priority: the publisher alone runs SCHED_FIFO; th
   int pings = 0, publisher_fifo = 0, fifo_tasks_max = 0;
   EmulatorHooks hooks;
   hooks.message = [&](std::string_view m) { messages.emplace_back(m); };
-  hooks.on_ping = [&](std::span<const std::uint8_t>) {  // on the publisher thread
+  Emulator emu(config::parse_scenario(testing::small_scenario_yaml(), "test.yaml"), o, clock,
+               hooks);
+  emu.add_device(std::make_unique<PingProbe>([&] {  // on the publisher thread
     ++pings;
     if (thread_policy() == SCHED_FIFO) ++publisher_fifo;
     fifo_tasks_max = std::max(fifo_tasks_max, fifo_threads());
-  };
-  Emulator emu(config::parse_scenario(testing::small_scenario_yaml(), "test.yaml"), o, clock,
-               hooks);
+  }));
   const RunStats s = emu.run();
   INFO(joined(messages));
   REQUIRE(pings > 0);
@@ -206,18 +220,18 @@ TEST_CASE("emulator --realtime-priority: the publisher alone runs SCHED_FIFO; th
 }
 
 TEST_CASE("emulator: a publisher held up is late by its own fault, not the renderer's") {
-  // the on_ping hook runs on the publisher: holding it 40 ms at ping 5 (a 26.7 ms ping period)
+  // a device runs on the publisher: holding it 40 ms at ping 5 (a 26.7 ms ping period)
   // makes ping 6 about 13 ms late with its render long ready (16 pings are rendered ahead)
   const EmulatorOptions o = paced_options("realtime", 0.5);
   MonotonicClock clock;
   int pings = 0;
   EmulatorHooks hooks;
   hooks.message = [](std::string_view) {};
-  hooks.on_ping = [&](std::span<const std::uint8_t>) {
-    if (pings++ == 5) std::this_thread::sleep_for(std::chrono::milliseconds(40));
-  };
   Emulator emu(config::parse_scenario(testing::small_scenario_yaml(), "test.yaml"), o, clock,
                hooks);
+  emu.add_device(std::make_unique<PingProbe>([&] {
+    if (pings++ == 5) std::this_thread::sleep_for(std::chrono::milliseconds(40));
+  }));
   const RunStats s = emu.run();
   INFO(stats_json(s));
   CHECK(s.pings_late >= 1);

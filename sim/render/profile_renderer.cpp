@@ -15,7 +15,7 @@ namespace {
 // that many bin edges and its rest goes to the last bin.
 constexpr int kMaxPiecesPerSegment = 64;
 // Echo terms changing by more than this fraction along a segment are interpolated by a
-// quadratic through the segment's middle (see march()).
+// quadratic through the segment's middle (LineMarch::deposit_segment).
 constexpr double kCurvedEcho = 0.01;
 
 // [lo, hi] ∩ {s : a + s·b inside [min, max]} (one axis of a slab clip)

@@ -21,9 +21,10 @@
 //   transports' own threads (socketcand server), pose source thread (--pose-from).
 //
 // UDP stream (--udp HOST:PORT): the 1024-byte XTF file header as one datagram first, then again
-// before the first ping at or after every kHeaderRepeatS of simulation time since the last one
-// (so a receiver that starts late learns the channel layout within 2 s); then one datagram per
-// ping. Receivers tell them apart by size and first byte (xtf::classify_datagram).
+// before the first ping at or after every kHeaderRepeatS (sonar_udp_device.h) of simulation
+// time since the last one (a receiver that starts late learns the channel layout within 2 s);
+// then one datagram per ping. Receivers tell them apart by size and first byte
+// (xtf::classify_datagram).
 // Datagram size: a ping must fit one datagram (65,507 bytes): the constructor refuses a sonar
 // whose encoded ping is larger, naming the largest samples per side for its sample type
 // (max_udp_samples_per_side: 32,544 uint8, 16,272 uint16, 8,136 float32). Without --udp there
@@ -60,8 +61,6 @@
 
 namespace sonarloop::emulator {
 
-// The file header datagram is repeated every this many seconds of simulation time.
-inline constexpr double kHeaderRepeatS = 2.0;
 // Epoch of --rate max runs: 2026-01-01T00:00:00Z (as `sonarloop render`).
 inline constexpr std::int64_t kMaxRateEpochUtcNs = 1767225600LL * 1'000'000'000LL;
 

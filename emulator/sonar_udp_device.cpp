@@ -3,8 +3,6 @@
 #include <cstdio>
 #include <utility>
 
-#include "emulator/emulator.h"
-
 namespace sonarloop::emulator {
 
 SonarUdpDevice::SonarUdpDevice(const net::HostPort& destination, int send_buffer_bytes,

@@ -15,6 +15,9 @@
 
 namespace sonarloop::emulator {
 
+// The file header datagram is repeated every this many seconds of simulation time.
+inline constexpr double kHeaderRepeatS = 2.0;
+
 class SonarUdpDevice final : public Device {
  public:
   // header_bytes: the encoded XTF file header; packet_bytes: every ping's size (for describe).

@@ -14,11 +14,6 @@ using namespace sonarloop::render;
 
 namespace {
 
-// the paper's sonar: the pailhas_strip preset
-SonarDesc strip_sonar() {
-  return sonarloop::testing::pailhas_strip_sonar();
-}
-
 ChipDatasetSpec spec(std::vector<std::string> seabeds, std::vector<double> resolutions_m,
                      ChipKind kind = ChipKind::kHighlight, std::uint64_t seed = 5) {
   ChipDatasetSpec s;
@@ -29,7 +24,7 @@ ChipDatasetSpec spec(std::vector<std::string> seabeds, std::vector<double> resol
   for (const auto& name : seabeds)
     s.seabeds.push_back(builtin_dataset_seabed(name));
   s.resolutions_m = std::move(resolutions_m);
-  s.sonar = strip_sonar();
+  s.sonar = sonarloop::testing::pailhas_strip_sonar();  // the paper's sonar
   return s;
 }
 

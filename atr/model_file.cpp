@@ -301,6 +301,15 @@ std::vector<std::uint8_t> encode_model(const Model& m) {
         static_cast<std::uint32_t>(m.classification_gate.has_value()));
   if (m.detection_gate) write_gate(w, *m.detection_gate);
   if (m.classification_gate) write_gate(w, *m.classification_gate);
+  // version 5: the detector rules
+  w.u8(m.detector_rules ? 1 : 0);
+  w.u8(0);
+  w.u8(0);
+  w.u8(0);
+  if (m.detector_rules) {
+    w.u32(static_cast<std::uint32_t>(m.detector_rules->min_pings));
+    w.f64(m.detector_rules->min_along_m);
+  }
   w.u32(crc32(w.data()));
   return std::move(w.data());
 }
@@ -379,6 +388,24 @@ Model decode_model(std::span<const std::uint8_t> bytes, const std::string& name,
         auto& slot = g.stage == GateStage::kDetection ? m.detection_gate : m.classification_gate;
         if (slot) r.fail("two gates of the " + std::string(gate_stage_name(g.stage)) + " stage");
         slot = std::move(g);
+      }
+    }
+    if (version >= 5) {
+      const std::uint8_t recorded = r.u8("detector rules flag");
+      if (recorded > 1) r.fail("detector rules flag " + std::to_string(recorded) + " (0 or 1)");
+      r.u8("reserved byte");
+      r.u8("reserved byte");
+      r.u8("reserved byte");
+      if (recorded == 1) {
+        DetectorRules d;
+        const std::uint32_t pings = r.u32("detector min_pings");
+        if (pings < 1 || pings > static_cast<std::uint32_t>(kMaxDetectorRulePings)) {
+          r.fail("detector min_pings " + std::to_string(pings) + " (1 to " +
+                 std::to_string(kMaxDetectorRulePings) + ")");
+        }
+        d.min_pings = static_cast<int>(pings);
+        d.min_along_m = r.f64("detector min_along_m");
+        m.detector_rules = d;
       }
     }
     r.need(4, "the checksum trailer");

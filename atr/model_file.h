@@ -1,8 +1,9 @@
 #pragma once
 // The classifier's model file (.slpca): a versioned little-endian binary format.
 //
-// Version 4 layout (all integers unsigned little-endian, floats IEEE 754 little-endian). Version
-// 3 is the same without the clutter flag (flags bit 1) and the gates; version 2 without the class
+// Version 5 layout (all integers unsigned little-endian, floats IEEE 754 little-endian). Version
+// 4 is the same without the detector rules record (read as none: the detector's own options);
+// version 3 without the clutter flag (flags bit 1) and the gates; version 2 without the class
 // height (its flags byte is 0); version 1 also lacks the pre-processing record (read as no
 // pre-processing) and the reject and typical distances. Older versions are read with every class's
 // height unknown (the tools then fill the heights of the simulator's target classes,
@@ -11,7 +12,7 @@
 //   header, 36 bytes
 //     0   u8[5]  magic "SLPCA"
 //     5   u8     0 (reserved)
-//     6   u16    format version (4)
+//     6   u16    format version (5)
 //     8   u32    chip width (pixels)
 //    12   u32    chip height (pixels)                      n = width * height
 //    16   u32    p, the requested subspace dimension
@@ -51,6 +52,9 @@
 //       f64    threshold (a candidate passes when p >= it), f64 bias
 //       f64[n] feature means, f64[n] feature scales, f64[T] weights (T = n linear, n + n(n+1)/2
 //              quadratic: atr/logistic_gate.h)
+//   detector rules (version 5; atr/subspace_classifier.h DetectorRules)
+//     u8     1 when recorded (then the two fields follow), 0 for none; u8[3] 0
+//     u32    min_pings (1 to 1000), f64 min_along_m (0 to 100)
 //   trailer
 //     u32    CRC-32 (IEEE 802.3 polynomial, as zlib's crc32) of every preceding byte
 //
@@ -67,7 +71,7 @@
 
 namespace sonarloop::atr {
 
-inline constexpr std::uint16_t kModelFileVersion = 4;
+inline constexpr std::uint16_t kModelFileVersion = 5;
 inline constexpr char kModelFileMagic[5] = {'S', 'L', 'P', 'C', 'A'};
 
 // The file's bytes for a (valid) model. Throws std::runtime_error if validate_model() fails.

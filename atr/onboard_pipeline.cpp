@@ -9,7 +9,20 @@
 #include "units/angles.h"
 
 namespace sonarloop::atr {
-namespace {}  // namespace
+namespace {
+
+// The detector's options with the object rules of the model's gates (Model::detector_rules): the
+// gates' thresholds were chosen on what a detector with those rules reports.
+DetectorOptions detector_options_for(DetectorOptions o, const std::optional<Model>& model) {
+  if (model && model->detector_rules) {
+    o.min_pings = model->detector_rules->min_pings;
+    o.min_along_m = model->detector_rules->min_along_m;
+    o.max_along_m = std::max(o.max_along_m, o.min_along_m);
+  }
+  return o;
+}
+
+}  // namespace
 
 OnboardPipeline::OnboardPipeline(std::optional<Model> model, const OnboardOptions& options,
                                  ContactSink sink)
@@ -18,7 +31,7 @@ OnboardPipeline::OnboardPipeline(std::optional<Model> model, const OnboardOption
       receiver_(options.receiver,
                 [this](const xtf::XtfFileHeader& h, const xtf::XtfPing& p) { on_ping(h, p); }),
       waterfall_(options.waterfall_pings, options.frame_origin),
-      detector_(options.detector) {
+      detector_(detector_options_for(options.detector, model)) {
   features_.reserve(gate_feature_count(GateStage::kClassification));
   if (!(options.position_window_m > 0.0)) {
     throw std::invalid_argument("position window must be > 0 m");

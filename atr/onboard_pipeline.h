@@ -108,7 +108,9 @@ class OnboardPipeline {
   using ContactSink = std::function<void(const Contact&)>;
   using CandidateSink = std::function<void(const CandidateReport&)>;
 
-  // Without a model, objects are reported unclassified (status "no_model"). Throws
+  // Without a model, objects are reported unclassified (status "no_model"). A model that records
+  // the detector rules its gates were trained behind (Model::detector_rules) sets the detector's
+  // min_pings and min_along_m over options.detector's. Throws
   // std::invalid_argument for bad options or a model whose chips are not highlight chips.
   OnboardPipeline(std::optional<Model> model, const OnboardOptions& options, ContactSink sink);
   ~OnboardPipeline();

@@ -161,6 +161,17 @@ void validate_model(const Model& m) {
     }
     validate_gate(*m.classification_gate);
   }
+  if (m.detector_rules) {
+    const DetectorRules& d = *m.detector_rules;
+    if (d.min_pings < 1 || d.min_pings > kMaxDetectorRulePings) {
+      throw std::runtime_error("model detector rules: min_pings = " + std::to_string(d.min_pings) +
+                               " (allowed 1 to " + std::to_string(kMaxDetectorRulePings) + ")");
+    }
+    if (!(d.min_along_m >= 0.0 && d.min_along_m <= kMaxDetectorRuleAlong_m)) {
+      throw std::runtime_error("model detector rules: min_along_m = " +
+                               std::to_string(d.min_along_m) + " (allowed 0 to 100 m)");
+    }
+  }
 }
 
 bool valid_class_height(double h_m) {

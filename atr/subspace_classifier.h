@@ -144,6 +144,18 @@ struct ClassModel {
   float typical_distance = 0.0f;
 };
 
+// The detector's object rules a model's gates were trained behind (atr/detector.h,
+// DetectorOptions::min_pings and min_along_m): a gate's threshold is chosen on what that detector
+// reports, so the onboard pipeline runs its detector with the rules of the model it classifies
+// with (atr/onboard_pipeline.h). train --surveys records them (mission/survey_training.h).
+struct DetectorRules {
+  int min_pings = 2;
+  double min_along_m = 0.1;
+  friend bool operator==(const DetectorRules&, const DetectorRules&) = default;
+};
+inline constexpr int kMaxDetectorRulePings = 1000;
+inline constexpr double kMaxDetectorRuleAlong_m = 100.0;
+
 // A trained model: plain data, saved and loaded by atr/model_file.h.
 struct Model {
   int chip_width = 0;           // pixels of the chips the model takes
@@ -159,6 +171,8 @@ struct Model {
   // features before a chip is classified, and on those and the classification after
   std::optional<LogisticGate> detection_gate;
   std::optional<LogisticGate> classification_gate;
+  // the detector's rules the gates were trained behind; none: the detector's own options
+  std::optional<DetectorRules> detector_rules;
 
   std::size_t pixel_count() const {
     return static_cast<std::size_t>(chip_width) * static_cast<std::size_t>(chip_height);

@@ -1,5 +1,6 @@
 #include "mission/survey_training.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -51,6 +52,9 @@ void fly_pass(
     const std::function<void(int done, int total)>& after_survey, const StopFn& stop) {
   const int total = static_cast<int>(t.scenarios.size()) * t.surveys_per_scenario;
   int done = 0;
+  atr::OnboardOptions onboard = t.onboard;
+  onboard.detector.min_pings = t.detector_rules.min_pings;
+  onboard.detector.min_along_m = t.detector_rules.min_along_m;
   for (std::size_t j = 0; j < t.scenarios.size(); ++j) {
     for (int i = 0; i < t.surveys_per_scenario; ++i) {
       if (stop && stop()) return;
@@ -66,7 +70,7 @@ void fly_pass(
       hooks.on_candidate = [&](const atr::Waterfall& w, const atr::CandidateReport& r) {
         on_candidate(scene, seed, static_cast<int>(j), w, r);
       };
-      (void)run_lockstep(sc, scene, model, t.onboard, agent, t.lockstep, hooks);
+      (void)run_lockstep(sc, scene, model, onboard, agent, t.lockstep, hooks);
       after_survey(++done, total);
     }
   }
@@ -180,7 +184,7 @@ GateRows collect_classification_rows(const TrainingSurveys& t, const atr::Model&
 GateChoice choose_gate_threshold(const atr::LogisticGate& gate, const GateRows& rows,
                                  const std::vector<std::string>& scenario_names,
                                  int targets_per_scenario, double keep_targets,
-                                 double max_false_per_target) {
+                                 double max_false_per_target, GateAim aim) {
   const std::size_t n = scenario_names.size();
   // per row: its probability; per target: its best
   std::vector<double> p(rows.x.size());
@@ -213,24 +217,36 @@ GateChoice choose_gate_threshold(const atr::LogisticGate& gate, const GateRows& 
   const auto count_at = [](const std::vector<double>& v, double t) {
     return static_cast<int>(std::count_if(v.begin(), v.end(), [t](double q) { return q >= t; }));
   };
+  // the smallest threshold passing at most `allowed` of the clutter probabilities `v`
+  const auto budget = [](std::vector<double> v, double allowed) {
+    const auto m = static_cast<std::size_t>(std::max(0.0, std::floor(allowed + 1e-9)));
+    if (v.size() <= m) return 0.0;
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m), v.end(),
+                     std::greater<>());
+    return std::nextafter(v[m], 2.0);  // passes q >= threshold: the (m + 1)-th largest fails
+  };
   GateChoice c;
   c.threshold = 1.0;
   bool any = false;
+  double ask = 0.0;  // kFalseBudget: the highest ask
   for (std::size_t j = 0; j < n; ++j) {
     GateScenario s;
     s.name = scenario_names[j];
     s.targets = targets_per_scenario;
     s.own_threshold = own(best[j]);
     s.reaching = static_cast<int>(best[j].size());
+    const double allowed = max_false_per_target * targets_per_scenario;
+    s.budget_threshold = budget(clutter[j], allowed);
     const int fa = count_at(clutter[j], s.own_threshold);
-    s.served = targets_per_scenario > 0 && s.own_threshold > 0.0 &&
-               fa <= max_false_per_target * targets_per_scenario;
+    s.served = targets_per_scenario > 0 && s.own_threshold > 0.0 && fa <= allowed;
     if (s.served) {
       c.threshold = std::min(c.threshold, s.own_threshold);
       any = true;
     }
+    ask = std::max(ask, std::min(s.budget_threshold, s.own_threshold));
     c.scenarios.push_back(s);
   }
+  if (any && aim == GateAim::kFalseBudget) c.threshold = std::min(c.threshold, ask);
   if (!any) {
     // none served: keep_targets of all the targets
     std::map<std::int64_t, double> all;
@@ -262,8 +278,9 @@ atr::Model train_survey_model(const TrainingSurveys& t, const SurveyModelOptions
   // a gate's threshold chosen to serve the seabeds it can (choose_gate_threshold)
   const auto choose = [&](atr::GateStage stage, atr::LogisticGate& g, const GateRows& rows,
                           const atr::GateFitOptions& f, double max_false) {
-    const GateChoice c =
-        choose_gate_threshold(g, rows, names, targets_per_scenario, f.keep_targets, max_false);
+    const GateChoice c = choose_gate_threshold(
+        g, rows, names, targets_per_scenario, f.keep_targets, max_false,
+        stage == atr::GateStage::kDetection ? GateAim::kKeepTargets : GateAim::kFalseBudget);
     g.threshold = c.threshold;
     if (o.on_gate_choice) o.on_gate_choice(stage, c);
   };
@@ -272,6 +289,7 @@ atr::Model train_survey_model(const TrainingSurveys& t, const SurveyModelOptions
   atr::TrainOptions train = o.train;
   if (train.class_metadata.empty()) train.class_metadata = survey_class_metadata();
   atr::Model model = atr::train_model(data.chips, train);
+  model.detector_rules = t.detector_rules;
   if (o.on_gate_rows) o.on_gate_rows(atr::GateStage::kDetection, data.detection);
   model.detection_gate =
       fit_or_explain(atr::GateStage::kDetection, data.detection, o.detection_gate);

@@ -154,9 +154,11 @@ std::vector<std::string> onboard_args(const Args& args, const std::string& model
                                       "--stats-json",
                                       logs.path("onboard_stats.json")};
   onboard.insert(onboard.end(), scenario_args.begin(), scenario_args.end());
-  if (const auto h = args.get("--detector-threshold")) {
-    onboard.push_back("--detector-threshold");
-    onboard.push_back(*h);
+  for (const char* option : {"--detector-threshold", "--gate-threshold"}) {
+    if (const auto v = args.get(option)) {
+      onboard.push_back(option);
+      onboard.push_back(*v);
+    }
   }
   return onboard;
 }
@@ -262,6 +264,7 @@ int run_realtime(const Args& args, const std::string& model,
                  const config::Scenario& scenario) {
   const std::string rate = args.get_or("--rate", "10");
   args.get_double("--rate", 0.01, 1000.0);  // validated here, used by the children
+  args.get_double("--gate-threshold", 0.0, 1.0);
   const std::string report_path = args.get_or("--report", "out/mission.json");
   const Logs logs{args.get_or(
       "--out", (std::filesystem::path(report_path).parent_path() / "mission_logs").string())};
@@ -322,6 +325,7 @@ int run_mission(const std::vector<std::string>& argv) {
                          {"--layout"},
                          {"--classify-candidates", false},
                          {"--detector-threshold"},
+                         {"--gate-threshold"},
                          {"--threshold"},
                          {"--no-relook", false},
                          {"--relook-all", false},
@@ -412,6 +416,9 @@ options:
   --realtime             the three processes on the wall clock (see above)
   --detector-threshold H the detector's operating threshold, the smallest object height in
                          metres measured from its shadow (default 0.14; atr/detector.h)
+  --gate-threshold P     the classification gate's operating point, the target probability a
+                         detection needs (0 to 1; default: the model's): higher gives fewer
+                         false contacts and fewer targets (gate_froc.csv in --out)
   --classify-candidates  lock-step: classify the detector's candidates below its threshold too
                          (in seed_S_candidates.csv; slower)
   --match-radius M       lock-step: a contact within M of a target is it (default 3; more

@@ -189,6 +189,7 @@ int run_onboard(const std::vector<std::string>& argv) {
                          {"--stats-json"},
                          {"--look-radius"},
                          {"--detector-threshold"},
+                         {"--gate-threshold"},
                          {"--origin"},
                          {"--scenario"},
                          {"--quiet", false},
@@ -237,6 +238,7 @@ int run_onboard(const std::vector<std::string>& argv) {
   const std::optional<net::HostPort> web_address = web_option(args);
 
   std::optional<atr::Model> model = load_model_if(args.get("--model"));
+  set_gate_threshold(model, args.get_double("--gate-threshold", 0.0, 1.0));
   // before listening: a port in use fails at once
   std::unique_ptr<WebView> web =
       open_web_view(web_address, options.frame_origin, "sonarloop onboard");
@@ -323,6 +325,10 @@ options:
   --search-cols N        the same in range (default 10)
   --detector-threshold H  the detector's operating threshold: the smallest object height, in
                          metres, measured from its shadow (default 0.14; atr/detector.h)
+  --gate-threshold P     the classification gate's operating point, the target probability a
+                         detection needs (0 to 1; default: the model's, chosen in training):
+                         higher gives fewer false contacts and fewer targets (a mission
+                         report's gate_froc.csv); for a model with gates (train --surveys)
   --look-radius M        multi-look fusion: a classified object within M metres of one seen
                          before (another pass or aspect) is fused with it, and its report adds
                          looks, object, fused_class and fused_mine_like (default 2; 0: off)

@@ -142,6 +142,7 @@ int run_run(const std::vector<std::string>& argv) {
                          {"--epoch"},
                          {"--classify"},
                          {"--contacts"},
+                         {"--gate-threshold"},
                          {"--renderer"},
                          {"--web"},
                          {"--lateness-tolerance-ms"},
@@ -162,8 +163,12 @@ int run_run(const std::vector<std::string>& argv) {
   if (stats_json) stats_json_file.emplace("--stats-json", *stats_json);
   const auto classify = args.get("--classify");
   if (args.has("--contacts") && !classify) throw UsageError("--contacts needs --classify MODEL");
+  if (args.has("--gate-threshold") && !classify) {
+    throw UsageError("--gate-threshold needs --classify MODEL");
+  }
   // the model first: a bad file fails before the scene is built
   std::optional<atr::Model> model = load_model_if(classify);
+  set_gate_threshold(model, args.get_double("--gate-threshold", 0.0, 1.0));
 
   config::Scenario scenario = load_scenario_or_default(
       args.positionals().empty() ? std::nullopt : std::optional(args.positionals()[0]));
@@ -279,6 +284,8 @@ options:
                          mission`), one JSON contact report per object
   --contacts FILE        write the contact reports there (default stderr); udp:HOST:PORT:
                          one JSON line per UDP datagram there (`sonarloop autonomy`)
+  --gate-threshold P     with --classify: the classification gate's operating point (0 to 1;
+                         default: the model's; see `sonarloop onboard --help`)
   --renderer R           profile (default: the heightfield profile renderer) or raytrace (the
                          Embree reference; it builds views of the seabed as the vehicle goes,
                          so a real-time run may drop pings while it does: docs/rendering.md)

@@ -231,7 +231,9 @@ every target the detector found (centred on the truth) and of its false alarms (
 class: hard negatives) and trains the PCA model on them; its detections' features fit the
 detection gate. Pass 2, other surveys flown with that model, fits the classification gate on
 the classified detections (atr/contact_gate.h). The onboard consumer then reports only what the
-gates pass. Training seeds start at --seed (default 100000); missions are reported on others.
+gates pass. The detector flies every pass with objects from one ping up, and the model records
+that rule: onboard detects as the gates were trained. Training seeds start at --seed (default
+100000); missions are reported on others.
   --surveys A,B,...      the training scenarios (their seabeds; their targets are replaced)
   --surveys-per-scenario N  surveys of each per pass (default 2)
   --per-type N           targets of each class per survey (default 8)
@@ -239,11 +241,14 @@ gates pass. Training seeds start at --seed (default 100000); missions are report
   --min-separation M     between targets (default 15)
   --area-margin M        the survey area: the seabed less this (default 50)
   --max-clutter N        clutter chips kept per survey, a uniform sample (default 400)
-  --keep-targets F       the classification gate keeps this fraction of the training targets
-                         that reach it, a target when one of its detections passes, on every
-                         training seabed where that costs at most one false contact per target
-                         (default 0.98; the detection gate keeps 0.99, or F if larger, at up to
-                         10 false detections per target)
+  --false-per-target B   the classification gate's budget: at most B false detections per
+                         target on each training seabed (default 0.1) ...
+  --keep-targets F       ... where that keeps at least this fraction of the seabed's targets
+                         that reach the gate, a target when one of its detections passes
+                         (default 0.97); a seabed that cannot have both keeps F of its targets
+                         (mission/survey_training.h, choose_gate_threshold; the detection gate
+                         keeps 0.99, or F if larger, where that costs at most 10 false
+                         detections per target)
   --p N, --aspect-sectors N  as above (defaults 10 and 8)
   --gate-rows PREFIX     also write each gate's training rows (features, label, target) to
                          PREFIX_detection.csv and PREFIX_classification.csv

@@ -21,7 +21,7 @@ namespace {
 
 // Bumped whenever the recipe or what it depends on (detector, chips, gates) changes in a way the
 // key below does not see.
-constexpr const char* kRecipeVersion = "survey-recipe-1";
+constexpr const char* kRecipeVersion = "survey-recipe-2";
 constexpr const char* kTrainingScenarios[] = {"survey_flat", "survey_ripples", "survey_clutter",
                                               "survey_rocky", "mission_20"};
 
@@ -75,11 +75,12 @@ std::string default_model_path() {
   const mission::SurveyModelOptions o = default_model_options();
   std::string key = std::string(kRecipeVersion) + "\n" + SONARLOOP_VERSION + "\n";
   char line[256];
-  std::snprintf(line, sizeof line, "%llu %d %d %.6g %d %d %d %.6g %.6g %.6g\n",
+  std::snprintf(line, sizeof line, "%llu %d %d %.6g %d %d %d %.6g %.6g %.6g %d %.6g\n",
                 static_cast<unsigned long long>(t.first_seed), t.surveys_per_scenario, t.per_type,
                 t.min_separation_m, t.chips.max_clutter, o.train.p, o.train.aspect_sectors,
                 o.detection_gate.keep_targets, o.classification_gate.keep_targets,
-                t.onboard.detector.min_height_m);
+                t.onboard.detector.min_height_m, t.detector_rules.min_pings,
+                t.detector_rules.min_along_m);
   key += line;
   for (const char* name : kTrainingScenarios)
     key += builtin_yaml(name);

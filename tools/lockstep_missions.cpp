@@ -44,6 +44,7 @@ int run_lockstep_missions(const Args& args, const std::string& model_path,
   mission::MissionSpec spec;
   spec.scenario = scenario;
   spec.model = load_model_if(model_path);
+  set_gate_threshold(spec.model, args.get_double("--gate-threshold", 0.0, 1.0));
   spec.agent = agent_options(args);
   const std::string layout = args.get_or("--layout", "scenario");
   if (layout != "scenario" && layout != "random") {
@@ -184,6 +185,10 @@ int run_lockstep_missions(const Args& args, const std::string& model_path,
   settings.field("model", model_path).field("stopped", stopped);
   settings.field("match_radius_m", spec.score.match_radius_m, 6);
   settings.field("layout", layout);
+  // the classification gate's operating point in effect (--gate-threshold or the model's)
+  if (spec.model && spec.model->classification_gate) {
+    settings.field("gate_threshold", spec.model->classification_gate->threshold, 6);
+  }
   settings.end_object();
   std::string text = "{\n  \"run\": " + settings.str() +
                      ",\n  \"summary\": " + mission::mission_summary_json(pooled) +

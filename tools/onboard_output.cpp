@@ -7,6 +7,7 @@
 
 #include "atr/model_file.h"
 #include "drivers/json/json_writer.h"
+#include "tools/args.h"
 #include "tools/chip_options.h"
 #include "tools/default_model.h"
 
@@ -69,6 +70,16 @@ std::optional<atr::Model> load_model_if(const std::optional<std::string>& path) 
   // "default": the default model, built and cached the first time (tools/default_model.h)
   if (is_default_model(*path)) return load_model_with_metadata(ensure_default_model(false));
   return load_model_with_metadata(*path);  // older model files: heights of simulated types
+}
+
+void set_gate_threshold(std::optional<atr::Model>& model, std::optional<double> threshold) {
+  if (!threshold) return;
+  if (!model || !model->classification_gate) {
+    throw UsageError(
+        "--gate-threshold: the model has no classification gate (a model of "
+        "`train --surveys`, or the default model, has one)");
+  }
+  model->classification_gate->threshold = *threshold;
 }
 
 void print_onboard_stats(const char* who, const atr::OnboardStats& s,

@@ -48,6 +48,11 @@ class ContactWriter {
 // built and cached the first time.
 std::optional<atr::Model> load_model_if(const std::optional<std::string>& path);
 
+// --gate-threshold P: the classification gate's operating point (its target probability, 0 to
+// 1) instead of the one training chose; a point of the mission report's gate_froc.csv. Throws
+// UsageError when `model` has no classification gate (a model of `train --surveys` has one).
+void set_gate_threshold(std::optional<atr::Model>& model, std::optional<double> threshold);
+
 // The end-of-run statistics on stderr, a few lines (`who` prefixes the first).
 void print_onboard_stats(const char* who, const atr::OnboardStats& s,
                          const atr::PacketQueue* queue);

@@ -149,8 +149,11 @@ int run_survey_dataset(const std::vector<std::string>& argv) {
 }
 
 int run_survey_train(const std::vector<std::string>& argv) {
-  const Args args(
-      argv, survey_options({{"--p"}, {"--aspect-sectors"}, {"--keep-targets"}, {"--gate-rows"}}));
+  const Args args(argv, survey_options({{"--p"},
+                                        {"--aspect-sectors"},
+                                        {"--keep-targets"},
+                                        {"--false-per-target"},
+                                        {"--gate-rows"}}));
   if (!args.positionals().empty()) {
     throw UsageError("with --surveys, train takes no CHIPS_DIR ('" + args.positionals()[0] + "')");
   }
@@ -164,13 +167,17 @@ int run_survey_train(const std::vector<std::string>& argv) {
     o.classification_gate.keep_targets = *keep;
     o.detection_gate.keep_targets = std::max(*keep, o.detection_gate.keep_targets);
   }
+  if (const auto budget = args.get_double("--false-per-target", 0.0, 100.0))
+    o.classification_max_false_per_target = *budget;
   o.on_gate_choice = [](atr::GateStage s, const mission::GateChoice& c) {
     std::printf("%s gate: threshold %.4g\n", atr::gate_stage_name(s), c.threshold);
     for (const mission::GateScenario& g : c.scenarios) {
-      std::printf("  %-18s %s: its targets kept %.1f %%, %.2f false detections per target%s\n",
-                  g.name.c_str(), g.served ? "served" : "not served", 100.0 * g.kept,
-                  g.false_per_target,
-                  g.served ? "" : " (keeping its targets would cost too many false detections)");
+      std::printf(
+          "  %-18s %s: its targets kept %.1f %%, %.2f false detections per target "
+          "(its own threshold %.3g, its budget's %.3g)%s\n",
+          g.name.c_str(), g.served ? "served" : "not served", 100.0 * g.kept, g.false_per_target,
+          g.own_threshold, g.budget_threshold,
+          g.served ? "" : ": keeping its targets would cost too many false detections");
     }
   };
   if (const auto prefix = args.get("--gate-rows")) {
@@ -210,9 +217,11 @@ int run_survey_train(const std::vector<std::string>& argv) {
   }
   std::printf(
       "\ngates: detection threshold %.4f (keeps %.0f %% of the training targets), "
-      "classification threshold %.4f (%.0f %%)\nwrote %s\n",
+      "classification threshold %.4f (%.2f false detections per target where that keeps %.0f %% "
+      "of a seabed's targets)\nwrote %s\n",
       model.detection_gate->threshold, 100 * o.detection_gate.keep_targets,
-      model.classification_gate->threshold, 100 * o.classification_gate.keep_targets, out->c_str());
+      model.classification_gate->threshold, o.classification_max_false_per_target,
+      100 * o.classification_gate.keep_targets, out->c_str());
   return 0;
 }
 

@@ -92,7 +92,15 @@ void fix_crc(std::vector<std::uint8_t>& b) {
 // classes or gates: version 3 has no gate count; version 2 no class height either (and a 0
 // flags byte); version 1 neither the pre-processing record nor the reject and typical distances.
 std::vector<std::uint8_t> downgrade(const Model& m, int version) {
-  const auto v3 = encode_model(m);
+  REQUIRE_FALSE(m.detector_rules);
+  auto v5 = encode_model(m);
+  // version 4: without the detector rules record (4 bytes for none) before the CRC
+  std::vector<std::uint8_t> v4(v5.begin(), v5.end() - 8);
+  v4[6] = 4;
+  v4.insert(v4.end(), 4, 0);
+  fix_crc(v4);
+  if (version == 4) return v4;
+  const auto& v3 = v4;
   if (version == 3) {
     std::vector<std::uint8_t> out(v3.begin(), v3.end() - 8);  // without the gate count and CRC
     out[6] = 3;
@@ -188,9 +196,11 @@ TEST_CASE("model file: the byte layout is the documented one") {
   double h = 0.0;
   std::memcpy(&h, b.data() + 82, 8);  // height_m (little-endian host)
   CHECK(h == 0.4);
-  // size: header + pre-processing + per class (name record + subspaces) + gate count + crc
-  CHECK(le32(b, b.size() - 8) == 0);  // no gates
-  std::size_t expect = 36 + 24 + 4 + 4;
+  // size: header + pre-processing + per class (name record + subspaces) + gate count + detector
+  // rules (none: the flag and 3 reserved bytes) + crc
+  CHECK(le32(b, b.size() - 12) == 0);  // no gates
+  CHECK(le32(b, b.size() - 8) == 0);   // no detector rules
+  std::size_t expect = 36 + 24 + 4 + 4 + 4;
   for (const auto& c : m.classes) {
     expect += 2 + c.name.size() + 2 + 4 + 8 + 8;
     for (const auto& s : c.subspaces) {
@@ -217,9 +227,9 @@ TEST_CASE("model file: bad magic, version, truncation, trailing bytes and corrup
                     Catch::Contains("bad magic"));
 
   b = good;
-  b[6] = 5;
-  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("unsupported format version 5") &&
-                                              Catch::Contains("reads versions 1 to 4"));
+  b[6] = 6;
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("unsupported format version 6") &&
+                                              Catch::Contains("reads versions 1 to 5"));
   // class metadata: an unknown flag, a height out of range, a height said unknown but not 0
   const auto single = encode_model(trained(false));  // first class cuboid, height at 82
   b = single;
@@ -432,4 +442,38 @@ TEST_CASE("model file: version 4 keeps clutter classes and contact gates; versio
   flagged[69] |= 2;  // the clutter bit in a version 3 file
   fix_crc(flagged);
   CHECK_THROWS_WITH(decode_model(flagged, "v3"), Catch::Contains("flags byte"));
+}
+
+TEST_CASE("model file: version 5 keeps the detector rules; version 4 loads without them") {
+  Model m = trained(false);
+  m.detector_rules = DetectorRules{1, 0.0};
+  std::uint16_t version = 0;
+  const Model back = decode_model(encode_model(m), "v5", &version);
+  CHECK(version == 5);
+  REQUIRE(back.detector_rules);
+  CHECK(*back.detector_rules == DetectorRules{1, 0.0});
+  m.detector_rules = DetectorRules{3, 0.25};
+  CHECK(*decode_model(encode_model(m), "v5").detector_rules == DetectorRules{3, 0.25});
+  // none recorded: none read
+  const Model plain = trained(false);
+  CHECK_FALSE(decode_model(encode_model(plain), "v5").detector_rules);
+  // version 4 files have no record: none
+  const Model v4 = decode_model(downgrade(plain, 4), "v4", &version);
+  CHECK(version == 4);
+  CHECK_FALSE(v4.detector_rules);
+  expect_same(plain, v4);
+  // out of range: refused when written and when read
+  Model bad = m;
+  bad.detector_rules->min_pings = 0;
+  CHECK_THROWS_WITH(encode_model(bad), Catch::Contains("min_pings"));
+  bad.detector_rules = DetectorRules{2, -1.0};
+  CHECK_THROWS_WITH(encode_model(bad), Catch::Contains("min_along_m"));
+  auto bytes = encode_model(m);  // rules {3, 0.25}: the u32 starts 12 bytes before the end
+  bytes[bytes.size() - 16] = 0;
+  fix_crc(bytes);
+  CHECK_THROWS_WITH(decode_model(bytes, "zero"), Catch::Contains("min_pings 0"));
+  bytes = encode_model(m);
+  bytes[bytes.size() - 20] = 2;  // the flag byte
+  fix_crc(bytes);
+  CHECK_THROWS_WITH(decode_model(bytes, "flag"), Catch::Contains("detector rules flag 2"));
 }

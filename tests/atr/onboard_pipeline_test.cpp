@@ -1,6 +1,7 @@
 // The onboard pipeline on a synthetic stream: objects come out as contacts at their true
 // latitude/longitude (pitch and side accounted for), datagrams in any order; and once warmed up,
-// the per-ping path (receive, decode, reorder, waterfall, detect) allocates nothing.
+// the per-ping path (receive, decode, reorder, waterfall, detect) allocates nothing; a model's
+// detector rules decide whether an object seen in one ping is reported.
 #include <catch2/catch.hpp>
 
 #include <atomic>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "atr/onboard_pipeline.h"
+#include "tests/atr/synthetic_chips.h"
 #include "tests/atr/synthetic_pings.h"
 #include "tests/support/allocation_counter.h"
 
@@ -25,10 +27,11 @@ double pitch_deg(int k) {
   return 4.0 * std::sin(2.0 * std::numbers::pi * k * 0.0675 / 2.5);
 }
 
-std::vector<Bytes> stream(int pings) {
+std::vector<Bytes> stream(int pings, const std::vector<testing::SeabedObject>& objects = kObjects,
+                          double (*pitch)(int) = pitch_deg) {
   const xtf::XtfFileHeader h = testing::make_stream_header();
   std::vector<Bytes> out{xtf::encode_file_header(h)};
-  testing::stream_line(pings, kObjects, pitch_deg, h,
+  testing::stream_line(pings, objects, pitch, h,
                        [&](const xtf::XtfPing& p) { out.push_back(xtf::encode_ping(p, h)); });
   return out;
 }
@@ -95,4 +98,45 @@ TEST_CASE("onboard pipeline: no allocation per ping once warmed up") {
   // the counted stretch held objects, so the detector's paths ran (and reported them)
   CHECK(contacts >= 2);
   CHECK(pipeline.stats().receiver.pings > 300);
+}
+
+TEST_CASE("onboard pipeline: the model's detector rules decide an object seen in one ping") {
+  // one object 0.1 m long, at ping 40's footprint (0.135 m between pings, no pitch): one ping
+  // sees it
+  const std::vector<testing::SeabedObject> one_ping = {{1, 40 * 0.135, 12.0, 0.1, 0.40}};
+  const std::vector<Bytes> datagrams = stream(150, one_ping, [](int) { return 0.0; });
+  // a small two-class model (no gates, no clutter class): every object it sees is reported
+  const auto lc = testing::make_linear_classes(2, 8, 6, 3, 77);
+  std::vector<atr::LabelledChip> chips;
+  Rng rng(3, RngStream::kTraining, 4);
+  for (int c = 0; c < 2; ++c) {
+    for (int i = 0; i < 12; ++i)
+      chips.push_back({testing::sample_linear(lc, c, rng, 0.2), c ? "b" : "a", std::nullopt, ""});
+  }
+  atr::TrainOptions train;
+  train.p = 4;
+  const atr::Model plain = atr::train_model(chips, train);
+  atr::Model single = plain;
+  single.detector_rules = atr::DetectorRules{1, 0.0};
+  const auto contacts_with = [&](std::optional<atr::Model> model) {
+    std::vector<atr::Contact> out;
+    atr::OnboardPipeline pipeline(std::move(model), atr::OnboardOptions{},
+                                  [&](const atr::Contact& c) { out.push_back(c); });
+    for (const Bytes& d : datagrams)
+      pipeline.feed(d);
+    pipeline.finish();
+    return out;
+  };
+  // the detector's defaults (two pings at least) reject it, with or without a model that records
+  // no rules
+  CHECK(contacts_with(std::nullopt).empty());
+  CHECK(contacts_with(plain).empty());
+  // a model trained behind a one-ping detector reports it, where it is
+  const std::vector<atr::Contact> seen = contacts_with(single);
+  REQUIRE(seen.size() == 1);
+  CHECK(seen[0].side == 1);
+  REQUIRE(seen[0].latitude_deg);
+  const LocalTangentPlane plane(testing::kStreamOrigin);
+  const Vec2 ne = plane.to_local(GeoPoint{*seen[0].latitude_deg, *seen[0].longitude_deg});
+  CHECK((ne - Vec2(40 * 0.135, 12.0)).norm() < 0.3);
 }

@@ -1,7 +1,7 @@
 // `sonarloop train --surveys` and `sonarloop dataset --surveys` as a user runs them, on a small
 // cluttered scenario: the chips are the targets and the detector's false alarms, the model has a
 // clutter class and both contact gates, and `mission` with it reports the gate's probability on
-// its contacts and writes the gate's FROC.
+// its contacts and writes the gate's FROC; --gate-threshold moves its operating point.
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <string>
@@ -58,6 +58,9 @@ TEST_CASE("train --surveys: a clutter class and both gates; mission reports the 
   REQUIRE(m.classification_gate);
   CHECK(m.detection_gate->threshold > 0.0);
   CHECK(m.detection_gate->threshold < 1.0);
+  // the gates were trained behind a detector of objects from one ping up, and the model says so
+  REQUIRE(m.detector_rules);
+  CHECK(*m.detector_rules == atr::DetectorRules{1, 0.0});
   // a mission with it: the contacts carry the gate's probability, the gate's FROC is written
   REQUIRE(run_logged(dir,
                      "mission " + kSmallSurvey + " --model " + model +
@@ -70,6 +73,41 @@ TEST_CASE("train --surveys: a clutter class and both gates; mission reports the 
   if (!contacts.empty()) CHECK(contacts.find("\"target_probability\":") != std::string::npos);
   const std::string candidates = slurp(dir.file("mission/seed_5_candidates.csv"));
   CHECK(candidates.find(",reported,") != std::string::npos);
+  std::string parse_error;
+  const auto report = autonomy::JsonLine::parse(slurp(dir.file("mission.json")), parse_error);
+  REQUIRE(report);
+  CHECK(report->object("run")->number("gate_threshold").value_or(-1) ==
+        Approx(m.classification_gate->threshold).margin(1e-6));
+
+  // --gate-threshold moves the operating point: every contact then has that probability at least
+  REQUIRE(run_logged(dir,
+                     "mission " + kSmallSurvey + " --model " + model +
+                         " --no-relook --area-margin 35 --quiet --gate-threshold 0.9 --report " +
+                         dir.file("high.json") + " --out " + dir.file("high"),
+                     "high") == 0);
+  std::string error;
+  const auto high = autonomy::JsonLine::parse(slurp(dir.file("high.json")), error);
+  REQUIRE(high);
+  CHECK(high->object("run")->number("gate_threshold").value_or(-1) == Approx(0.9));
+  const std::string high_contacts = slurp(dir.file("high/seed_5_contacts.jsonl"));
+  std::size_t lines = 0;
+  for (std::size_t at = 0; at < high_contacts.size();) {
+    const std::size_t end = high_contacts.find('\n', at);
+    const auto c = autonomy::JsonLine::parse(high_contacts.substr(at, end - at), error);
+    REQUIRE(c);
+    CHECK(c->number("target_probability").value_or(-1) >= 0.9);
+    ++lines;
+    at = end == std::string::npos ? high_contacts.size() : end + 1;
+  }
+  std::size_t default_lines = 0;
+  for (const char ch : contacts)
+    default_lines += ch == '\n';
+  CHECK(lines <= default_lines);
+  // out of range, or without a model that has the gate: usage errors
+  CHECK(run_logged(dir, "mission " + kSmallSurvey + " --model " + model + " --gate-threshold 1.5",
+                   "bad") == 2);
+  CHECK(run_logged(dir, "run --rate max --duration 1 --gate-threshold 0.5", "run") == 2);
+  CHECK(slurp(dir.file("run.err")).find("--gate-threshold needs --classify") != std::string::npos);
 }
 
 TEST_CASE("train --surveys: usage errors") {

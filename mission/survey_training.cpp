@@ -9,6 +9,7 @@
 
 #include "mission/layout.h"
 #include "sim/scene/scene.h"
+#include "study/sweep.h"
 
 namespace sonarloop::mission {
 namespace {
@@ -97,9 +98,7 @@ atr::LogisticGate fit_or_explain(atr::GateStage stage, const GateRows& rows,
 }  // namespace
 
 std::map<std::string, atr::ClassMetadata, std::less<>> survey_class_metadata() {
-  std::map<std::string, atr::ClassMetadata, std::less<>> out;
-  for (const auto& t : targets::target_type_table())
-    out[std::string(t.key)] = {t.mine_like, t.size_m.z()};
+  auto out = study::target_class_metadata();
   out[std::string(atr::kClutterClassName)] = {false, std::nullopt, true};
   return out;
 }

@@ -13,7 +13,8 @@
 #   mission  <- mission, autonomy, study, emulator, atr, sim, drivers, common (the closed loop in
 #               lock-step and survey scoring: offline, where the simulator meets the onboard side)
 #   web      <- web, atr, drivers, common (the live view: event hub, page, HTTP server)
-#   ranks    <- ranks, sim, common (chips over the ranks of an MPI job)
+#   ranks    <- ranks, study, atr, sim, drivers, common (chips and the resolution study's run over
+#               the ranks of an MPI job)
 #   products <- products, sim, drivers, common (what scene and render write: images, truth)
 #   tools    <- anything (the commands)
 #   units/ (header-only constants, e.g. angles) may be included from every layer
@@ -42,7 +43,7 @@ declare -A allowed=(
   [autonomy]="autonomy atr drivers common units"
   [mission]="mission autonomy study emulator atr sim drivers common units"
   [web]="web atr drivers common units"
-  [ranks]="ranks sim common units"
+  [ranks]="ranks study atr sim drivers common units"
   [products]="products sim drivers common units"
   [tools]="tools products ranks web mission autonomy study emulator atr config sim drivers common units"
   [units]="units"

@@ -438,12 +438,35 @@ render::ChipDatasetSpec render_group_spec(const SweepExperiment& e, const Render
   return spec;
 }
 
-std::vector<std::unique_ptr<render::ChipRenderer>> other_look_renderers(const SweepExperiment& e,
-                                                                        const RenderGroup& g,
-                                                                        const SweepSettings& s) {
-  std::vector<std::unique_ptr<render::ChipRenderer>> out;
-  for (int look = 1; look < g.looks; ++look)
-    out.push_back(std::make_unique<render::ChipRenderer>(render_group_spec(e, g, s, true, look)));
+std::map<std::string, atr::ClassMetadata, std::less<>> target_class_metadata() {
+  std::map<std::string, atr::ClassMetadata, std::less<>> out;
+  for (const auto& t : targets::target_type_table())
+    out[std::string(t.key)] = {t.mine_like, t.size_m.z()};
+  return out;
+}
+
+std::vector<ChipSet> group_chip_sets(const SweepExperiment& e, const RenderGroup& g,
+                                     const SweepSettings& s) {
+  const std::size_t classes = e.classes.size();
+  const std::size_t n_train = static_cast<std::size_t>(g.train_count) * classes;
+  const std::size_t n_test = static_cast<std::size_t>(e.test_count) * classes;
+  std::vector<ChipSet> out;
+  const auto add = [&](ChipSetRole role, int look, const render::ChipDatasetSpec& spec,
+                       std::size_t count) {
+    out.push_back({role, look, std::make_unique<render::ChipRenderer>(spec), count});
+  };
+  if (is_fusion(e)) {
+    const auto [train_highlight, train_shadow] = fusion_specs(e, g, s, false);
+    const auto [test_highlight, test_shadow] = fusion_specs(e, g, s, true);
+    add(ChipSetRole::kTrain, 0, train_highlight, n_train);
+    add(ChipSetRole::kTrainShadow, 0, train_shadow, n_train);
+    add(ChipSetRole::kTest, 0, test_highlight, n_test);
+    add(ChipSetRole::kTestShadow, 0, test_shadow, n_test);
+    return out;
+  }
+  add(ChipSetRole::kTrain, 0, render_group_spec(e, g, s, false), n_train);
+  for (int look = 0; look < g.looks; ++look)
+    add(ChipSetRole::kTest, look, render_group_spec(e, g, s, true, look), n_test);
   return out;
 }
 

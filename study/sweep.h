@@ -46,6 +46,8 @@
 //               the four targets' highlights; every experiment also scores each test seabed.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -221,15 +223,36 @@ std::vector<RenderGroup> render_groups(const SweepExperiment& e);
 // or test (seed S + 1) seen in look `look` (0 .. g.looks - 1).
 render::ChipDatasetSpec render_group_spec(const SweepExperiment& e, const RenderGroup& g,
                                           const SweepSettings& settings, bool test, int look = 0);
-// The test chips' renderers of looks 1 .. g.looks - 1 (element k - 1 for look k), made once per
-// render group; look 0 is render_group_spec(e, g, settings, true)'s.
-std::vector<std::unique_ptr<render::ChipRenderer>> other_look_renderers(
-    const SweepExperiment& e, const RenderGroup& g, const SweepSettings& settings);
 
 // The fusion experiment's two datasets of a render group: highlight chips (test = false: seed
 // S) and shadow chips of the same objects, all at the shadow chips' 25 m ground range.
 std::pair<render::ChipDatasetSpec, render::ChipDatasetSpec> fusion_specs(
     const SweepExperiment& e, const RenderGroup& g, const SweepSettings& settings, bool test);
+
+// What a chip set of a render group holds (ChipSet::role).
+enum class ChipSetRole : std::uint8_t {
+  kTrain,        // training chips (fusion: the highlight chips)
+  kTrainShadow,  // fusion: the training objects' shadow chips
+  kTest,         // test chips of one look (fusion: the highlight chips)
+  kTestShadow,   // fusion: the test objects' shadow chips
+};
+// One set of chips a render group renders at each of its resolution slots.
+struct ChipSet {
+  ChipSetRole role = ChipSetRole::kTrain;
+  int look = 0;  // kTest: the look (0 .. g.looks - 1)
+  std::unique_ptr<render::ChipRenderer> renderer;
+  std::size_t count = 0;  // chips per slot (per class count x classes)
+};
+// A render group's chip sets in the one order in which they are rendered at each resolution
+// slot, by rank 0 of a sweep and by the ranks serving it (MPI: every rank makes the same render
+// calls in the same order): fusion: training highlight, training shadow, test highlight, test
+// shadow; otherwise: training, test, then the test objects' other looks, 1 .. g.looks - 1.
+std::vector<ChipSet> group_chip_sets(const SweepExperiment& e, const RenderGroup& g,
+                                     const SweepSettings& settings);
+
+// The class metadata of the simulator's target types (their mine-like flag and height), for
+// the models the study trains on them.
+std::map<std::string, atr::ClassMetadata, std::less<>> target_class_metadata();
 
 // A training set: the first count x classes chips of `chips` (count per class).
 std::vector<atr::LabelledChip> training_prefix(const std::vector<atr::LabelledChip>& chips,

@@ -2,7 +2,7 @@
 // memory: chips from the chip renderer, the eigen-subspace classifier, misidentification with
 // 95 % Wilson intervals per target and condition, CSV files and charts (tools/plot_sweep.py).
 // The experiments and the scoring live in study/sweep.h, the run (render, train, score, write)
-// in tools/sweep_run.h; this file is the command line.
+// in ranks/sweep_run.h; this file is the command line.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -14,6 +14,8 @@
 #include "config/loader/sonar_loader.h"
 #include "ranks/chip_ranks.h"
 #include "ranks/mpi_world.h"
+#include "ranks/sweep_ranks.h"
+#include "ranks/sweep_run.h"
 #include "sim/render/chip_renderer.h"
 #include "study/sweep.h"
 #include "tools/args.h"
@@ -21,8 +23,6 @@
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
 #include "tools/progress.h"
-#include "tools/sweep_ranks.h"
-#include "tools/sweep_run.h"
 
 #ifndef SONARLOOP_SWEEP_PLOT_SCRIPT
 #define SONARLOOP_SWEEP_PLOT_SCRIPT "tools/plot_sweep.py"
@@ -141,7 +141,7 @@ int run_sweep(const std::vector<std::string>& argv) {
   if (!args.positionals().empty()) {
     throw UsageError("unexpected argument '" + args.positionals()[0] + "'");
   }
-  SweepRun ctx;
+  ranks::SweepRun ctx;
   study::SweepSettings& s = ctx.settings;
   s.seed = static_cast<std::uint64_t>(
       args.get_int("--seed", 0, std::numeric_limits<long long>::max() - 1).value_or(0));
@@ -190,29 +190,31 @@ int run_sweep(const std::vector<std::string>& argv) {
   }
   // under mpirun: rank 0 runs the sweep, the others render their share of its chips
   mpi::start();
-  if (!mpi::is_root()) return serve_sweep(experiments, s, ctx.threads) ? 0 : 130;
+  install_stop_flag();
+  ctx.stop = [] { return stop_requested(); };
+  if (!mpi::is_root()) return ranks::serve_sweep(experiments, s, ctx.threads, ctx.stop) ? 0 : 130;
   fs::create_directories(ctx.out_dir);
 
   double total = 0.0;
   for (const auto& e : experiments)
-    total += sweep_experiment_chips(e);
-  install_stop_flag();
+    total += ranks::sweep_experiment_chips(e);
   const auto t0 = Clock::now();
   bool stopped = false;
   {
     Progress bar("sweep: " + std::to_string(static_cast<long long>(total)) + " chips", total);
-    ctx.bar = &bar;
+    ctx.progress = [&bar](double done) { bar.update(done); };
     for (const auto& e : experiments) {
       std::fprintf(stderr, "sonarloop sweep: %s: %s (%zu conditions)\n", e.name.c_str(),
                    e.title.c_str(), e.conditions.size());
       std::vector<study::ConditionResult> results;
-      const bool done = run_sweep_experiment(e, ctx, results);
+      const bool done = ranks::run_sweep_experiment(e, ctx, results);
       if (!done) {
         stopped = true;
         break;
       }
     }
     bar.finish();
+    ctx.progress = nullptr;  // the bar ends here
   }
   const double secs = seconds_since(t0);
   std::printf("rendered %.0f chips in %.1f s (%.1f chips/s, %d threads%s); results in %s\n",

@@ -528,5 +528,46 @@ TEST_CASE("registration: windows cut off the centre, and re-centred on the highl
   CHECK(registration_chip(chip.view(), e.conditions[0], 3, true).pixels == centred.pixels);
 }
 
+TEST_CASE("group_chip_sets: the one render order of a group's chip sets, with their counts",
+          "[sweep]") {
+  SweepSettings s = settings();
+  s.resolutions_cm = {5};
+  s.looks = 3;
+  const SweepExperiment e = make_sweep_experiment("fig15", s);
+  const RenderGroup g = render_groups(e)[0];
+  const std::size_t classes = e.classes.size();
+  const std::vector<ChipSet> sets = group_chip_sets(e, g, s);
+  // training chips, then the test chips of each look
+  REQUIRE(sets.size() == 4);
+  CHECK(sets[0].role == ChipSetRole::kTrain);
+  CHECK(sets[0].count == static_cast<std::size_t>(g.train_count) * classes);
+  CHECK(sets[0].renderer->spec().seed == render_group_spec(e, g, s, false).seed);
+  for (int look = 0; look < 3; ++look) {
+    const ChipSet& t = sets[static_cast<std::size_t>(look) + 1];
+    CHECK(t.role == ChipSetRole::kTest);
+    CHECK(t.look == look);
+    CHECK(t.count == static_cast<std::size_t>(e.test_count) * classes);
+    CHECK(t.renderer->spec().look == look);
+    CHECK(t.renderer->spec().seed == render_group_spec(e, g, s, true).seed);
+  }
+  // fusion: highlight then shadow, training then test
+  const SweepExperiment f = make_sweep_experiment("fusion", s);
+  const RenderGroup fg = render_groups(f)[0];
+  const std::vector<ChipSet> fs = group_chip_sets(f, fg, s);
+  REQUIRE(fs.size() == 4);
+  const ChipSetRole roles[] = {ChipSetRole::kTrain, ChipSetRole::kTrainShadow, ChipSetRole::kTest,
+                               ChipSetRole::kTestShadow};
+  const chips::ChipKind kinds[] = {chips::ChipKind::kHighlight, chips::ChipKind::kShadow,
+                                   chips::ChipKind::kHighlight, chips::ChipKind::kShadow};
+  for (std::size_t i = 0; i < 4; ++i) {
+    INFO("set " << i);
+    CHECK(fs[i].role == roles[i]);
+    CHECK(fs[i].renderer->spec().kind == kinds[i]);
+    CHECK(fs[i].count ==
+          static_cast<std::size_t>(i < 2 ? fg.train_count : f.test_count) * f.classes.size());
+  }
+  CHECK(fs[2].renderer->spec().seed == fusion_specs(f, fg, s, true).first.seed);
+}
+
 }  // namespace
 }  // namespace sonarloop::study

@@ -247,7 +247,7 @@ TEST_CASE("sweep --deripple: the ripples' shadows are notched, training and test
   // The rippled seabed's shadow chips with the ripples notched out (atr/chip_deripple.h) before
   // the height projection. Measured with this command (120 test chips): 42.5 % misidentified
   // with the notch, 50.0 % without it, and 51.7 % when only the training chips were notched (a
-  // mutation of the sweep's run, now tools/sweep_run.cpp); 47 % sits between, 5-6 chips from either
+  // mutation of the sweep's run, now ranks/sweep_run.cpp); 47 % sits between, 5-6 chips from either
   // side.
   const sonarloop::testing::TempDir dir("sweep_cli_deripple");
   const auto with = small_fig15(dir, "with", "--shadow-height --deripple --seabed ripples");

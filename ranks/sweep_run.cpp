@@ -1,5 +1,5 @@
-// `sonarloop sweep` on rank 0 (tools/sweep_run.h): render, train, score, write.
-#include "tools/sweep_run.h"
+// `sonarloop sweep` on rank 0 (ranks/sweep_run.h): render, train, score, write.
+#include "ranks/sweep_run.h"
 
 #include <algorithm>
 #include <chrono>
@@ -14,17 +14,25 @@
 #include "atr/fusion.h"
 #include "ranks/chip_ranks.h"
 #include "ranks/mpi_world.h"
+#include "ranks/sweep_ranks.h"
 #include "sim/render/chip_renderer.h"
-#include "tools/chip_options.h"
-#include "tools/sweep_ranks.h"
 
-namespace sonarloop::tools {
-namespace mpi = ranks::mpi;
+namespace sonarloop::ranks {
 
 namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// One more chip rendered: the progress callback told.
+void advance(SweepRun& ctx) {
+  ++ctx.chips_done;
+  if (ctx.progress) ctx.progress(ctx.chips_done);
+}
 
 void write_file(const fs::path& path, const std::string& text) {
   const fs::path tmp = path.string() + ".tmp";
@@ -39,10 +47,11 @@ void write_file(const fs::path& path, const std::string& text) {
 // Renders chips 0..count-1 at one resolution slot (over the MPI ranks, if any: sweep_ranks.h),
 // handing them to `sink` in index order. Returns the number of chips rendered (fewer after a
 // stop request) and the wall time.
-std::size_t render_slot(const render::ChipRenderer& r, int slot, std::size_t count, int threads,
+std::size_t render_slot(const render::ChipRenderer& r, int slot, std::size_t count,
+                        const SweepRun& ctx,
                         const std::function<void(const render::ChipImage&)>& sink, double* wall_s) {
   const auto t0 = Clock::now();
-  const std::size_t done = render_sweep_chips(r, slot, count, threads, sink);
+  const std::size_t done = render_sweep_chips(r, slot, count, ctx.threads, sink, ctx.stop);
   *wall_s = seconds_since(t0);
   return done;
 }
@@ -53,6 +62,24 @@ void write_seabed_csv(const SweepRun& ctx, const study::SweepExperiment& e,
   if (e.seabed_names.size() < 2) return;
   write_file(ctx.out_dir / (e.name + "_seabed.csv"), study::seabed_csv(e, results));
 }
+
+// A render group's chip sets at one resolution slot, taken in study::group_chip_sets' order, the
+// order in which the serving ranks render them (ranks/sweep_ranks.h): take() checks that the set
+// asked for is the next one.
+class SlotSets {
+ public:
+  explicit SlotSets(const std::vector<study::ChipSet>& sets) : sets_(sets) {}
+  const study::ChipSet& take(study::ChipSetRole role, int look = 0) {
+    if (next_ >= sets_.size() || sets_[next_].role != role || sets_[next_].look != look) {
+      throw std::logic_error("sweep: chip sets taken out of study::group_chip_sets' order");
+    }
+    return sets_[next_++];
+  }
+
+ private:
+  const std::vector<study::ChipSet>& sets_;
+  std::size_t next_ = 0;
+};
 
 // One condition being tested: its classifier and its scores.
 struct Trial {
@@ -75,10 +102,10 @@ bool render_labelled(const render::ChipRenderer& r, int slot, std::size_t count,
   const bool shadow_height =
       ctx.settings.shadow_height && r.spec().kind == render::ChipKind::kShadow;
   const std::size_t got = render_slot(
-      r, slot, count, ctx.threads,
+      r, slot, count, ctx,
       [&](const render::ChipImage& c) {
         out.push_back(study::labelled_chip(c, shadow_height, ctx.settings.deripple));
-        ctx.bar->update(++ctx.chips_done);
+        advance(ctx);
       },
       wall_s);
   return got == count;
@@ -121,15 +148,15 @@ bool run_experiment(const study::SweepExperiment& e, SweepRun& ctx,
     write_seabed_csv(ctx, e, results);
   };
   for (const study::RenderGroup& g : study::render_groups(e)) {
-    const render::ChipRenderer train_r(study::render_group_spec(e, g, ctx.settings, false));
-    const render::ChipRenderer test_r(study::render_group_spec(e, g, ctx.settings, true));
-    const auto look_r = study::other_look_renderers(e, g, ctx.settings);
+    const std::vector<study::ChipSet> sets = study::group_chip_sets(e, g, ctx.settings);
     for (std::size_t slot = 0; slot < g.resolutions_m.size(); ++slot) {
+      SlotSets order(sets);
       // training chips, shared by the conditions of this resolution
       std::vector<atr::LabelledChip> train;
       double wall_s = 0.0;
-      const std::size_t n_train = static_cast<std::size_t>(g.train_count) * classes;
-      if (!render_labelled(train_r, static_cast<int>(slot), n_train, ctx, train, &wall_s)) {
+      const study::ChipSet& train_set = order.take(study::ChipSetRole::kTrain);
+      if (!render_labelled(*train_set.renderer, static_cast<int>(slot), train_set.count, ctx, train,
+                           &wall_s)) {
         return false;
       }
       const std::size_t got = train.size();
@@ -161,7 +188,7 @@ bool run_experiment(const study::SweepExperiment& e, SweepRun& ctx,
         opt.p = c.p;
         opt.aspect_sectors = c.aspect_sectors;
         opt.skip_degenerate = true;
-        opt.class_metadata = sim_class_metadata();  // mine-like flags of the target types
+        opt.class_metadata = study::target_class_metadata();  // mine-like flags of the target types
         const auto t0 = Clock::now();
         opt.preprocess = c.preprocess;
         opt.reject_quantile = c.reject_quantile;
@@ -182,9 +209,10 @@ bool run_experiment(const study::SweepExperiment& e, SweepRun& ctx,
 
       // test chips: every condition classifies each one; multi-look conditions add each look's
       // distances to the object's fused scores and score the object at their last look
-      const std::size_t n_test = static_cast<std::size_t>(e.test_count) * classes;
+      const study::ChipSet& test_set = order.take(study::ChipSetRole::kTest, 0);
+      const std::size_t n_test = test_set.count;
       const bool shadow_height =
-          ctx.settings.shadow_height && test_r.spec().kind == render::ChipKind::kShadow;
+          ctx.settings.shadow_height && test_set.renderer->spec().kind == render::ChipKind::kShadow;
       for (Trial& t : trials) {
         if (e.conditions[t.result->condition].looks <= 1) continue;
         t.fused.assign(n_test * classes, 0.0f);
@@ -249,18 +277,18 @@ bool run_experiment(const study::SweepExperiment& e, SweepRun& ctx,
           study::score_chip(*t.result, e, t.classifier->model(), truth, c.params.aspect_deg,
                             c.params.seabed, classified);
         }
-        ctx.bar->update(++ctx.chips_done);
+        advance(ctx);
       };
       std::size_t tested = render_slot(
-          test_r, static_cast<int>(slot), n_test, ctx.threads,
+          *test_set.renderer, static_cast<int>(slot), n_test, ctx,
           [&](const render::ChipImage& c) { classify_look(c, 0); }, &wall_s);
       // the other looks at the same objects; a condition is complete when its last look is
       int looks_done = tested == n_test ? 1 : 0;
       for (int look = 1; look < g.looks && looks_done == look; ++look) {
         double look_wall_s = 0.0;
         const std::size_t n = render_slot(
-            *look_r[static_cast<std::size_t>(look - 1)], static_cast<int>(slot), n_test,
-            ctx.threads, [&](const render::ChipImage& c) { classify_look(c, look); }, &look_wall_s);
+            *order.take(study::ChipSetRole::kTest, look).renderer, static_cast<int>(slot), n_test,
+            ctx, [&](const render::ChipImage& c) { classify_look(c, look); }, &look_wall_s);
         wall_s += look_wall_s;
         tested += n;
         if (n == n_test) ++looks_done;
@@ -301,26 +329,26 @@ bool run_fusion_experiment(const study::SweepExperiment& e, SweepRun& ctx,
                            std::vector<study::ConditionResult>& results) {
   const std::size_t classes = e.classes.size();
   for (const study::RenderGroup& g : study::render_groups(e)) {
-    const auto [train_hl, train_sh] = study::fusion_specs(e, g, ctx.settings, false);
-    const auto [test_hl, test_sh] = study::fusion_specs(e, g, ctx.settings, true);
-    const render::ChipRenderer rh(train_hl), rs(train_sh), th(test_hl), ts(test_sh);
+    const std::vector<study::ChipSet> sets = study::group_chip_sets(e, g, ctx.settings);
     for (std::size_t slot = 0; slot < g.resolutions_m.size(); ++slot) {
+      SlotSets order(sets);
       const auto& members = g.members[slot];
       const study::SweepCondition& c0 = e.conditions[members.front()];
-      const std::size_t n_train = static_cast<std::size_t>(g.train_count) * classes;
-      const std::size_t n_test = static_cast<std::size_t>(e.test_count) * classes;
+      const study::ChipSet& train_hl = order.take(study::ChipSetRole::kTrain);
+      const study::ChipSet& train_sh = order.take(study::ChipSetRole::kTrainShadow);
+      const std::size_t n_train = train_hl.count;
       const int islot = static_cast<int>(slot);
       double wall = 0.0, render_s = 0.0;
       std::vector<atr::LabelledChip> hl, sh;
-      if (!render_labelled(rh, islot, n_train, ctx, hl, &wall)) return false;
+      if (!render_labelled(*train_hl.renderer, islot, n_train, ctx, hl, &wall)) return false;
       render_s += wall;
-      if (!render_labelled(rs, islot, n_train, ctx, sh, &wall)) return false;
+      if (!render_labelled(*train_sh.renderer, islot, n_train, ctx, sh, &wall)) return false;
       render_s += wall;
       atr::TrainOptions opt;
       opt.p = c0.p;
       opt.skip_degenerate = true;
       opt.calibrate = true;
-      opt.class_metadata = sim_class_metadata();
+      opt.class_metadata = study::target_class_metadata();
       opt.preprocess = c0.preprocess;
       const auto t0 = Clock::now();
       atr::Classifier ch(atr::train_model(study::training_set(hl, e, c0), opt));
@@ -334,7 +362,9 @@ bool run_fusion_experiment(const study::SweepExperiment& e, SweepRun& ctx,
 
       // highlight test chips first, then each shadow chip scored with its object's highlight
       hl.clear();
-      if (!render_labelled(th, islot, n_test, ctx, hl, &wall)) return false;
+      const study::ChipSet& test_hl = order.take(study::ChipSetRole::kTest);
+      const std::size_t n_test = test_hl.count;
+      if (!render_labelled(*test_hl.renderer, islot, n_test, ctx, hl, &wall)) return false;
       render_s += wall;
       std::vector<std::optional<atr::Classification>> by_highlight(hl.size());
       for (std::size_t i = 0; i < hl.size(); ++i) {
@@ -344,9 +374,9 @@ bool run_fusion_experiment(const study::SweepExperiment& e, SweepRun& ctx,
       atr::Chip shadow_chip;
       double classify_s = 0.0;
       const std::size_t tested = render_slot(
-          ts, islot, n_test, ctx.threads,
+          *order.take(study::ChipSetRole::kTestShadow).renderer, islot, n_test, ctx,
           [&](const render::ChipImage& c) {
-            ctx.bar->update(++ctx.chips_done);
+            advance(ctx);
             shadow_chip =
                 study::classifier_chip(c, ctx.settings.shadow_height, ctx.settings.deripple);
             const auto t1 = Clock::now();
@@ -417,4 +447,4 @@ bool run_sweep_experiment(const study::SweepExperiment& e, SweepRun& run,
                              : run_experiment(e, run, results);
 }
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::ranks

@@ -9,7 +9,7 @@
 #include <variant>
 
 #include "drivers/n2k/messages.h"
-#include "emulator/pose_message.h"
+#include "drivers/pose/pose_message.h"
 #include "emulator/pose_source.h"
 #include "sim/vehicle/vehicle_desc.h"
 #include "units/angles.h"

@@ -6,7 +6,8 @@
 //   can:IFACE                        NMEA 2000 frames from a SocketCAN interface (vcan0, can0)
 //   socketcand:HOST:PORT[:CHANNEL]   NMEA 2000 frames from a socketcand server: sonarloop connects
 //                                    as a client (rawmode, channel default vcan0)
-//   udp:HOST:PORT                    listens for the UDP pose message (emulator/pose_message.md)
+//   udp:HOST:PORT                    listens for the UDP pose message
+//   (drivers/pose/pose_message.md)
 //
 // Each source runs one background thread that receives and merges into the latest pose; latest()
 // may be called from any thread at any time.
@@ -77,12 +78,18 @@
 #include "drivers/can/can_transport.h"
 #include "drivers/net/host_port.h"
 #include "drivers/net/udp_receiver.h"
+#include "drivers/pose/pose_message.h"
 #include "emulator/pose_history.h"
-#include "emulator/pose_message.h"
 #include "sim/frames.h"
 #include "sim/scene/scene_desc.h"
 
 namespace sonarloop::emulator {
+
+// The pose message is a wire format (drivers/pose/pose_message.h); the pose input reads it.
+using pose::decode_pose_message;
+using pose::encode_pose_message;
+using pose::kPoseMessageBytes;
+using pose::PoseMessage;
 
 struct ExternalPose {
   std::int64_t received_ns = 0;  // now_ns() at the receipt of the last update

@@ -13,14 +13,15 @@
 #include "units/angles.h"
 
 namespace sonarloop::tools {
-namespace {
-
-using Clock = std::chrono::steady_clock;
 
 void emit(const json::Writer& w) {
   std::printf("%s\n", w.str().c_str());
   std::fflush(stdout);
 }
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
 
 // The transitions between lit and dark bins of a line beyond its nadir gap and before bin
 // `end` (the reference's last lit bin: its fan, laid out for a flat seabed at the nadir

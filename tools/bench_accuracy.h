@@ -21,9 +21,13 @@
 #include <vector>
 
 #include "config/loader/scenario_loader.h"
+#include "drivers/json/json_writer.h"
 #include "sim/render/ping_renderer.h"
 
 namespace sonarloop::tools {
+
+// One JSON object as a line on stdout, flushed (what every bench section prints).
+void emit(const json::Writer& w);
 
 inline constexpr int kMaxEdgeMatchBins = 10;
 

@@ -10,16 +10,22 @@
 #include <vector>
 
 #include "autonomy/agent.h"
+#include "autonomy/autonomy_io.h"
 #include "autonomy/survey.h"
 #include "mission/agent_setup.h"
 #include "tools/args.h"
-#include "tools/autonomy_io.h"
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
 #include "tools/output_file.h"
 #include "tools/scenario_source.h"
 
 namespace sonarloop::tools {
+using autonomy::agent_report_json;
+using autonomy::AgentRunInfo;
+using autonomy::ContactListener;
+using autonomy::NavFix;
+using autonomy::NavListener;
+using autonomy::PosePublisher;
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -242,7 +248,7 @@ const Command kAutonomyCommand{
 
 An example vehicle brain in the loop with the emulator (docs/autonomy.md). It flies a lawnmower
 survey with a simple vehicle model (speed, bounded turn rate, altitude keeping) and publishes
-its pose to the emulator (`run --pose-from udp:...`, emulator/pose_message.md) so that the
+its pose to the emulator (`run --pose-from udp:...`, drivers/pose/pose_message.md) so that the
 pings come from where it steers. It reads the onboard consumer's contacts (`onboard --contacts
 udp:...`: one JSON line per datagram, atr/contact.h) and the navigation from CAN (NMEA 2000;
 the seabed's depth from PGN 128267 closes the altitude keeping). An object whose decision

@@ -42,11 +42,6 @@ std::string cpu_model() {
   return "unknown";
 }
 
-void emit(const json::Writer& w) {
-  std::printf("%s\n", w.str().c_str());
-  std::fflush(stdout);
-}
-
 void emit_ratio(const char* bench, const char* what, double profile, double raytrace) {
   json::Writer w;
   w.begin_object().field("bench", bench).field("ratio", what);

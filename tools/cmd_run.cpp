@@ -268,7 +268,7 @@ options:
   --stats-json FILE      write the final statistics as JSON (FILE is opened at start:
                          an unwritable place fails before the run)
   --pose-from SPEC       follow an external vehicle: can:IFACE, socketcand:HOST:PORT[:CHANNEL]
-                         or udp:HOST:PORT (emulator/pose_message.md); pings pause while the
+                         or udp:HOST:PORT (drivers/pose/pose_message.md); pings pause while the
                          pose is stale. Each ping is rendered at the pose of its own time
                          less --pose-delay, interpolated between the pose samples (UDP: at
                          their time stamps), extrapolated when none is newer (counted)

@@ -8,16 +8,18 @@
 #include <thread>
 #include <vector>
 
+#include "autonomy/autonomy_io.h"
 #include "drivers/json/json_writer.h"
 #include "mission/mission_report.h"
 #include "mission/mission_run.h"
-#include "tools/autonomy_io.h"
 #include "tools/cli_helpers.h"
 #include "tools/onboard_output.h"
 #include "tools/output_file.h"
 #include "tools/progress.h"
 
 namespace sonarloop::tools {
+using autonomy::agent_report_json;
+using autonomy::AgentRunInfo;
 namespace {
 
 std::vector<std::uint64_t> seed_list(const Args& args, const config::Scenario& scenario) {

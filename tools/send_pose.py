@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Send sonarloop UDP pose messages (emulator/pose_message.md): an external "vehicle" for
+"""Send sonarloop UDP pose messages (drivers/pose/pose_message.md): an external "vehicle" for
 `sonarloop run --pose-from udp:HOST:PORT`.
 
 Sends COUNT messages at RATE Hz, starting at LAT/LON and moving along HEADING at SPEED (a

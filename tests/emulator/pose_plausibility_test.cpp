@@ -22,7 +22,7 @@
 #include "drivers/n2k/messages.h"
 #include "drivers/net/udp_receiver.h"
 #include "drivers/net/udp_sender.h"
-#include "emulator/pose_message.h"
+#include "drivers/pose/pose_message.h"
 #include "tests/emulator/pose_source_support.h"
 #include "tests/support/skip.h"
 #include "tests/support/temp_dir.h"

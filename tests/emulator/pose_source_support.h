@@ -1,7 +1,7 @@
 #pragma once
-// What the pose input's tests share (pose_source_test.cpp: the sources; pose_message_test.cpp:
-// the message; pose_plausibility_test.cpp: implausible poses): an origin, an injected clock, a
-// bounded wait, and a sample message.
+// What the pose input's tests share (pose_source_test.cpp: the sources;
+// pose_plausibility_test.cpp: implausible poses): an origin, an injected clock, a bounded wait,
+// and a sample message (tests/drivers/pose/sample_pose.h).
 #include <atomic>
 #include <catch2/catch.hpp>
 #include <chrono>
@@ -12,7 +12,8 @@
 
 #include "common/geodesy.h"
 #include "drivers/net/udp_sender.h"
-#include "emulator/pose_message.h"
+#include "drivers/pose/pose_message.h"
+#include "tests/drivers/pose/sample_pose.h"
 
 namespace sonarloop::emulator::pose_test {
 
@@ -46,17 +47,7 @@ inline void let_time_pass() {
 }
 
 inline PoseMessage message(std::uint32_t seq) {
-  PoseMessage m;
-  m.sequence = seq;
-  m.time_unix_ns = 1'767'225'600'000'000'000 + static_cast<std::int64_t>(seq) * 100'000'000;
-  m.latitude_deg = 59.9012345 + 1e-6 * seq;
-  m.longitude_deg = 10.7523456;
-  m.depth_m = 35.5;
-  m.altitude_m = 12.25;
-  m.heading_rad = 1.5;
-  m.pitch_rad = -0.02;
-  m.roll_rad = 0.01;
-  return m;
+  return testing::sample_pose_message(seq);
 }
 
 inline void send(net::UdpSender& tx, const PoseMessage& m) {

@@ -1,7 +1,7 @@
 #pragma once
 // The wires of `sonarloop autonomy` (tools/cmd_autonomy.cpp): navigation read from CAN (NMEA 2000),
 // contacts read from UDP (JSON lines of the onboard consumer), the pose published to the emulator
-// (UDP pose message, emulator/pose_message.md), and the agent's report as JSON.
+// (UDP pose message, drivers/pose/pose_message.md), and the agent's report as JSON.
 #include <atomic>
 #include <cstdint>
 #include <deque>
@@ -18,7 +18,7 @@
 #include "drivers/net/udp_receiver.h"
 #include "drivers/net/udp_sender.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::autonomy {
 
 // The latest navigation read from the bus, in the mission frame.
 struct NavFix {
@@ -64,6 +64,7 @@ class ContactListener {
   std::uint64_t received() const { return received_.load(); }
   std::uint64_t malformed() const { return malformed_.load(); }
   std::string describe() const { return rx_.describe(); }
+  std::uint16_t port() const { return rx_.bound_port(); }  // the one bound (port 0: any free)
 
  private:
   void run();
@@ -110,4 +111,4 @@ struct AgentRunInfo {
 // geometry and timing (docs/autonomy.md).
 std::string agent_report_json(const autonomy::Agent& agent, const AgentRunInfo& info);
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::autonomy

@@ -1,21 +1,29 @@
-// The pose message of `run --pose-from udp:...` (emulator/pose_message.h, pose_message.md): the
+// The pose message of `run --pose-from udp:...` (drivers/pose/pose_message.h, pose_message.md): the
 // documented example byte for byte, and malformed datagrams refused with a reason.
-#include "emulator/pose_message.h"
+#include "drivers/pose/pose_message.h"
 
 #include <catch2/catch.hpp>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "tests/emulator/pose_source_support.h"
+#include <limits>
+
+#include "tests/drivers/pose/sample_pose.h"
 
 using namespace sonarloop;
-using namespace sonarloop::emulator;
-using namespace sonarloop::emulator::pose_test;
+using namespace sonarloop::pose;
+using Catch::Matchers::Contains;
 
 namespace {
 
-// The example datagram of emulator/pose_message.md.
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+PoseMessage message(std::uint32_t seq) {
+  return testing::sample_pose_message(seq);
+}
+
+// The example datagram of drivers/pose/pose_message.md.
 const std::vector<std::uint8_t> kExampleDatagram = {
     0x53, 0x4C, 0x50, 0x4D, 0x01, 0x00, 0x50, 0x00, 0x2A, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
     0x15, 0xCD, 0x55, 0xF5, 0x51, 0x72, 0x86, 0x18, 0x23, 0x53, 0x99, 0xBD, 0xC7, 0xF4, 0x4D, 0x40,

@@ -1,11 +1,11 @@
-#include "emulator/pose_message.h"
+#include "drivers/pose/pose_message.h"
 
 #include <bit>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
 
-namespace sonarloop::emulator {
+namespace sonarloop::pose {
 namespace {
 
 // Byte offsets of the fields (pose_message.md).
@@ -135,4 +135,4 @@ std::optional<PoseMessage> decode_pose_message(std::span<const std::uint8_t> dat
   return m;
 }
 
-}  // namespace sonarloop::emulator
+}  // namespace sonarloop::pose

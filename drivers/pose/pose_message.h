@@ -2,7 +2,7 @@
 // The UDP pose message: how an external vehicle (a vehicle computer in a hardware-in-the-loop
 // rig, a simulator, a script) tells the emulator where it is, for `sonarloop run --pose-from
 // udp:HOST:PORT` (docs/style.md habit 7: a versioned packet with magic, sequence and absolute
-// timestamp). Byte layout, semantics and an example datagram: emulator/pose_message.md.
+// timestamp). Byte layout, semantics and an example datagram: drivers/pose/pose_message.md.
 //
 //   off size type     field
 //     0    4 char[4]  magic "SLPM"
@@ -32,7 +32,7 @@
 #include <span>
 #include <string>
 
-namespace sonarloop::emulator {
+namespace sonarloop::pose {
 
 inline constexpr std::array<std::uint8_t, 4> kPoseMessageMagic = {'S', 'L', 'P', 'M'};
 inline constexpr std::uint16_t kPoseMessageVersion = 1;
@@ -60,4 +60,4 @@ std::array<std::uint8_t, kPoseMessageBytes> encode_pose_message(const PoseMessag
 std::optional<PoseMessage> decode_pose_message(std::span<const std::uint8_t> datagram,
                                                std::string& error);
 
-}  // namespace sonarloop::emulator
+}  // namespace sonarloop::pose

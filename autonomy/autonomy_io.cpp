@@ -1,4 +1,4 @@
-#include "tools/autonomy_io.h"
+#include "autonomy/autonomy_io.h"
 
 #include <chrono>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include "drivers/can/socketcand_client.h"
 #include "drivers/json/json_writer.h"
 #include "drivers/n2k/messages.h"
-#include "emulator/pose_message.h"
+#include "drivers/pose/pose_message.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::autonomy {
 namespace {
 
 constexpr int kPollMs = 50;
@@ -150,7 +150,7 @@ PosePublisher::PosePublisher(const net::HostPort& destination, const LocalTangen
     : tx_(destination), ltp_(ltp) {}
 
 void PosePublisher::publish(const autonomy::VehicleState& s, std::int64_t time_unix_ns) {
-  emulator::PoseMessage m;
+  pose::PoseMessage m;
   m.sequence = ++sequence_;
   m.time_unix_ns = time_unix_ns;
   const GeoPoint g = ltp_.to_geodetic(s.position.north_m, s.position.east_m);
@@ -160,7 +160,7 @@ void PosePublisher::publish(const autonomy::VehicleState& s, std::int64_t time_u
   m.heading_rad = s.heading_rad;
   m.pitch_rad = s.pitch_rad;
   m.roll_rad = 0.0;
-  const auto bytes = emulator::encode_pose_message(m);
+  const auto bytes = pose::encode_pose_message(m);
   tx_.send(bytes);
 }
 
@@ -273,4 +273,4 @@ std::string agent_report_json(const autonomy::Agent& agent, const AgentRunInfo& 
   return w.str();
 }
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::autonomy

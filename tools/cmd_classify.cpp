@@ -12,13 +12,22 @@
 #include "atr/model_file.h"
 #include "atr/subspace_classifier.h"
 #include "study/chip_folder.h"
+#include "study/classify_report.h"
 #include "tools/args.h"
 #include "tools/chip_options.h"
-#include "tools/classify_report.h"
 #include "tools/commands.h"
 #include "tools/progress.h"
 
 namespace sonarloop::tools {
+using study::ClassifiedChip;
+using study::ClassifyCounts;
+using study::ClassifyScores;
+using study::print_chip_lines;
+using study::print_scores;
+using study::print_summary;
+using study::score_chips;
+using study::write_classify_csv;
+using study::write_classify_json;
 namespace {
 
 // The chips of a folder (labelled when it has class subfolders), listed without their pixels;

@@ -13,7 +13,7 @@
 #include "atr/subspace_classifier.h"
 #include "study/chip_folder.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::study {
 
 // One chip's outcome.
 struct ClassifiedChip {
@@ -61,4 +61,4 @@ void write_classify_json(const std::string& path, const atr::Model& m,
                          const std::vector<ClassifiedChip>& rows, const ClassifyCounts& n,
                          const ClassifyScores& s);
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::study

@@ -1,5 +1,5 @@
 // `sonarloop classify`'s scoring and reports (classify_report.h).
-#include "tools/classify_report.h"
+#include "study/classify_report.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,9 +8,9 @@
 #include <stdexcept>
 
 #include "drivers/json/json_writer.h"
-#include "tools/chip_options.h"
+#include "study/sweep.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::study {
 namespace {
 
 // Whether a true class is mine-like: the model's flag for a class it knows, else the
@@ -18,7 +18,9 @@ namespace {
 std::optional<bool> truth_mine_like(const atr::Model& m, const std::string& name) {
   if (const int i = m.find_class(name); i >= 0)
     return m.classes[static_cast<std::size_t>(i)].mine_like;
-  const auto sim = sim_class_metadata();
+  // the simulator's types and the clutter of training surveys (never mine-like)
+  if (name == atr::kClutterClassName) return false;
+  const auto sim = target_class_metadata();
   if (const auto it = sim.find(name); it != sim.end()) return it->second.mine_like;
   return std::nullopt;
 }
@@ -295,4 +297,4 @@ void write_classify_json(const std::string& path, const atr::Model& m,
   if (!out) throw std::runtime_error("cannot write '" + path + "'");
 }
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::study

@@ -10,8 +10,9 @@
 #   atr      <- atr, drivers, common (the onboard side must not link the simulator)
 #   study    <- study, atr, sim, drivers, common (the offline resolution study and chip folders)
 #   autonomy <- autonomy, atr, drivers, common (the example agent: what a vehicle would run)
-#   mission  <- mission, autonomy, study, emulator, atr, sim, drivers, common (the closed loop in
-#               lock-step and survey scoring: offline, where the simulator meets the onboard side)
+#   mission  <- mission, autonomy, study, emulator, atr, config, sim, drivers, common (the closed
+#               loop in lock-step, survey scoring, training on surveys and the default model from
+#               the built-in scenarios: offline, where the simulator meets the onboard side)
 #   web      <- web, atr, drivers, common (the live view: event hub, page, HTTP server)
 #   ranks    <- ranks, study, atr, sim, drivers, common (chips and the resolution study's run over
 #               the ranks of an MPI job)
@@ -41,7 +42,7 @@ declare -A allowed=(
   [atr]="atr drivers common units"
   [study]="study atr sim drivers common units"
   [autonomy]="autonomy atr drivers common units"
-  [mission]="mission autonomy study emulator atr sim drivers common units"
+  [mission]="mission autonomy study emulator atr config sim drivers common units"
   [web]="web atr drivers common units"
   [ranks]="ranks study atr sim drivers common units"
   [products]="products sim drivers common units"

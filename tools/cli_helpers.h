@@ -1,5 +1,6 @@
 #pragma once
 // Small helpers shared by the sonarloop subcommands: comma lists and a Ctrl-C stop flag.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +13,11 @@
 #include "tools/args.h"
 
 namespace sonarloop::tools {
+
+// A counter as printf's %llu wants it.
+inline unsigned long long ull(std::uint64_t v) {
+  return static_cast<unsigned long long>(v);
+}
 
 // "a, b,,c" -> {"a", "b", "c"}: items trimmed of blanks and tabs, empty items dropped.
 std::vector<std::string> split_comma_list(const std::string& text);

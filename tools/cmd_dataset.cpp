@@ -24,9 +24,9 @@
 #include "study/chip_labels.h"
 #include "tools/args.h"
 #include "tools/cli_helpers.h"
+#include "tools/cmd_survey_training.h"
 #include "tools/commands.h"
 #include "tools/progress.h"
-#include "tools/survey_training.h"
 
 namespace sonarloop::tools {
 namespace mpi = ranks::mpi;

@@ -23,12 +23,12 @@
 #include "atr/contact.h"
 #include "drivers/json/json_writer.h"
 #include "drivers/net/unique_fd.h"
+#include "mission/default_model.h"
 #include "mission/mission_report.h"
 #include "tools/args.h"
 #include "tools/cli_helpers.h"
+#include "tools/cmd_mission_lockstep.h"
 #include "tools/commands.h"
-#include "tools/default_model.h"
-#include "tools/lockstep_missions.h"
 #include "tools/output_file.h"
 #include "tools/scenario_source.h"
 
@@ -342,15 +342,15 @@ int run_mission(const std::vector<std::string>& argv) {
                          {"--quiet", false}});
   if (args.positionals().size() > 1) throw UsageError("expected at most one SCENARIO.yaml");
   std::optional<std::string> model = args.get("--model");
-  if (model && !is_default_model(*model) && !std::filesystem::exists(*model)) {
+  if (model && !mission::is_default_model(*model) && !std::filesystem::exists(*model)) {
     throw UsageError("--model " + *model + ": no such file");
   }
   const std::optional<std::string> scenario_path =
       args.positionals().empty() ? std::nullopt : std::optional(args.positionals()[0]);
   const config::Scenario scenario = load_scenario_or_default(scenario_path);
-  if (!model || is_default_model(*model)) {
+  if (!model || mission::is_default_model(*model)) {
     install_stop_flag();
-    model = ensure_default_model(args.has("--quiet"));
+    model = mission::ensure_default_model(args.has("--quiet"), [] { return stop_requested(); });
     std::fprintf(stderr, "mission: the default model, %s\n", model->c_str());
   }
   if (args.has("--realtime")) {
@@ -403,7 +403,7 @@ stops the mission and still writes the report ("stopped": true).
 options:
   --model MODEL          the onboard consumer's model (`sonarloop train`); default (or none
                          given): the default model, trained once from the documented recipe on
-                         the built-in survey scenarios and cached (tools/default_model.h; about
+                         the built-in survey scenarios and cached (mission/default_model.h; about
                          7 minutes on 2 cores the first time)
   --seeds N              lock-step: fly N seeds (default 1), from --seed S (default: the
                          scenario's seed)

@@ -9,14 +9,14 @@
 
 #include "atr/model_file.h"
 #include "atr/subspace_classifier.h"
+#include "mission/default_model.h"
 #include "study/chip_folder.h"
 #include "tools/args.h"
 #include "tools/chip_options.h"
 #include "tools/cli_helpers.h"
+#include "tools/cmd_survey_training.h"
 #include "tools/commands.h"
-#include "tools/default_model.h"
 #include "tools/progress.h"
-#include "tools/survey_training.h"
 
 namespace sonarloop::tools {
 namespace {
@@ -64,11 +64,12 @@ int run_default_train(const std::vector<std::string>& argv) {
     throw UsageError("--default takes no CHIPS_DIR ('" + args.positionals()[0] + "')");
   }
   if (args.has("--path")) {
-    std::printf("%s\n", default_model_path().c_str());
+    std::printf("%s\n", mission::default_model_path().c_str());
     return 0;
   }
   install_stop_flag();
-  std::printf("%s\n", ensure_default_model(false).c_str());
+  std::printf("%s\n",
+              mission::ensure_default_model(false, [] { return stop_requested(); }).c_str());
   return 0;
 }
 
@@ -254,7 +255,7 @@ that rule: onboard detects as the gates were trained. Training seeds start at --
                          PREFIX_detection.csv and PREFIX_classification.csv
   --seed S, --threads N
 The default model of `sonarloop mission` is this with its defaults on the five built-in
-scenarios (tools/default_model.h): about 7 minutes on 2 cores, cached. `train --default`
+scenarios (mission/default_model.h): about 7 minutes on 2 cores, cached. `train --default`
 builds it now (if it is not cached yet) and prints its path; `--path` prints the path only.
 
 examples:

@@ -7,9 +7,10 @@
 
 #include "atr/model_file.h"
 #include "drivers/json/json_writer.h"
+#include "mission/default_model.h"
 #include "tools/args.h"
 #include "tools/chip_options.h"
-#include "tools/default_model.h"
+#include "tools/cli_helpers.h"
 
 namespace sonarloop::tools {
 namespace {
@@ -19,10 +20,6 @@ namespace {
 constexpr std::size_t kInProcessQueueSlots = 4096;
 // ContactWriter's destination prefix for UDP.
 constexpr const char* kUdpPrefix = "udp:";
-
-unsigned long long ull(std::uint64_t v) {
-  return static_cast<unsigned long long>(v);
-}
 
 }  // namespace
 
@@ -67,8 +64,10 @@ std::string ContactWriter::describe() const {
 
 std::optional<atr::Model> load_model_if(const std::optional<std::string>& path) {
   if (!path) return std::nullopt;
-  // "default": the default model, built and cached the first time (tools/default_model.h)
-  if (is_default_model(*path)) return load_model_with_metadata(ensure_default_model(false));
+  // "default": the default model, built and cached the first time (mission/default_model.h)
+  if (mission::is_default_model(*path))
+    return load_model_with_metadata(
+        mission::ensure_default_model(false, [] { return stop_requested(); }));
   return load_model_with_metadata(*path);  // older model files: heights of simulated types
 }
 

@@ -44,7 +44,7 @@ class ContactWriter {
 };
 
 // Loads a model file (older formats: class heights from the simulator, tools/chip_options.h),
-// or nullopt when no path is given; "default" is the default model (tools/default_model.h),
+// or nullopt when no path is given; "default" is the default model (mission/default_model.h),
 // built and cached the first time.
 std::optional<atr::Model> load_model_if(const std::optional<std::string>& path);
 

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <string>
 
+#include "tools/cli_helpers.h"
+
 namespace sonarloop::tools {
 namespace {
 
@@ -12,10 +14,6 @@ std::int64_t clock_ns(clockid_t id) {
   timespec ts{};
   clock_gettime(id, &ts);
   return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
-
-unsigned long long ull(std::uint64_t v) {
-  return static_cast<unsigned long long>(v);
 }
 
 }  // namespace

@@ -11,9 +11,13 @@
 //                      seed or layout a mission is reported on)
 //   classifier         p = 10, 8 aspect sectors, a clutter class of at most 400 false alarms
 //                      per survey
+//   detector           objects from one ping up (TrainingSurveys::detector_rules, recorded in
+//                      the model)
 //   gates              quadratic logistic gates (atr/contact_gate.h): the detection gate keeps
-//                      99 % of the training targets, the classification gate 95 % (a target is
-//                      kept when one of its detections passes)
+//                      99 % of the training targets (a target is kept when one of its detections
+//                      passes), the classification gate holds each seabed to 0.1 false
+//                      detections per target where that keeps 97 % of its targets
+//                      (choose_gate_threshold)
 //
 // Cache: $SONARLOOP_CACHE_DIR, else $XDG_CACHE_HOME/sonarloop, else ~/.cache/sonarloop; the file
 // models/default-<key>.slpca, whose key hashes the recipe, the training scenarios' text and this
@@ -24,22 +28,22 @@
 
 #include "mission/survey_training.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::mission {
 
 // The recipe's training surveys and options.
-mission::TrainingSurveys default_training_surveys();
-mission::SurveyModelOptions default_model_options();
+TrainingSurveys default_training_surveys();
+SurveyModelOptions default_model_options();
 
 // Where the default model is (or will be) cached.
 std::string default_model_path();
 
 // The default model's path, built first if it is not cached yet (progress on stderr unless
-// quiet; Ctrl-C stops the build with an error). Throws std::runtime_error when it cannot be
-// built or written.
-std::string ensure_default_model(bool quiet);
+// quiet; `stop` (may be empty; the commands' Ctrl-C flag) ends the build with an error). Throws
+// std::runtime_error when it cannot be built or written.
+std::string ensure_default_model(bool quiet, const StopFn& stop);
 
 // `--model` as the commands take it: "default" (or none where a command requires a model) is the
 // default model.
 bool is_default_model(const std::string& spec);
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::mission

@@ -1,4 +1,4 @@
-#include "tools/survey_training.h"
+#include "tools/cmd_survey_training.h"
 
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-#include "tools/default_model.h"
+#include "mission/default_model.h"
 
 #include <unistd.h>
 
@@ -12,12 +12,14 @@
 #include "atr/model_file.h"
 #include "config/default_scenario.h"
 #include "config/loader/scenario_loader.h"
-#include "tools/cli_helpers.h"
-#include "tools/progress.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::mission {
 namespace fs = std::filesystem;
 namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 // Bumped whenever the recipe or what it depends on (detector, chips, gates) changes in a way the
 // key below does not see.
@@ -50,8 +52,8 @@ std::string cache_dir() {
 
 }  // namespace
 
-mission::TrainingSurveys default_training_surveys() {
-  mission::TrainingSurveys t;
+TrainingSurveys default_training_surveys() {
+  TrainingSurveys t;
   for (const char* name : kTrainingScenarios)
     t.scenarios.push_back(config::parse_scenario(builtin_yaml(name), std::string(name) + ".yaml"));
   t.types = {targets::TargetType::kManta,      targets::TargetType::kRockan,
@@ -63,16 +65,16 @@ mission::TrainingSurveys default_training_surveys() {
   return t;
 }
 
-mission::SurveyModelOptions default_model_options() {
-  mission::SurveyModelOptions o;
+SurveyModelOptions default_model_options() {
+  SurveyModelOptions o;
   o.train.p = 10;
   o.train.aspect_sectors = 8;
   return o;
 }
 
 std::string default_model_path() {
-  const mission::TrainingSurveys t = default_training_surveys();
-  const mission::SurveyModelOptions o = default_model_options();
+  const TrainingSurveys t = default_training_surveys();
+  const SurveyModelOptions o = default_model_options();
   std::string key = std::string(kRecipeVersion) + "\n" + SONARLOOP_VERSION + "\n";
   char line[256];
   std::snprintf(line, sizeof line, "%llu %d %d %.6g %d %d %d %.6g %.6g %.6g %d %.6g\n",
@@ -94,7 +96,7 @@ bool is_default_model(const std::string& spec) {
   return spec == "default";
 }
 
-std::string ensure_default_model(bool quiet) {
+std::string ensure_default_model(bool quiet, const StopFn& stop) {
   const std::string path = default_model_path();
   if (fs::exists(path)) return path;
   const fs::path dir = fs::path(path).parent_path();
@@ -109,14 +111,14 @@ std::string ensure_default_model(bool quiet) {
                "(docs/autonomy.md; about 7 minutes on 2 cores) into %s\n",
                path.c_str());
   const auto t0 = std::chrono::steady_clock::now();
-  const atr::Model model = mission::train_survey_model(
+  const atr::Model model = train_survey_model(
       default_training_surveys(), default_model_options(),
-      [&](const mission::TrainingProgress& p) {
+      [&](const TrainingProgress& p) {
         if (quiet) return;
         std::fprintf(stderr, "default model: pass %d of 2, survey %d of %d done (%.0f s)\n", p.pass,
                      p.survey, p.surveys, seconds_since(t0));
       },
-      [] { return stop_requested(); });
+      stop);
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
   atr::save_model(model, tmp);
   fs::rename(tmp, path, ec);
@@ -129,4 +131,4 @@ std::string ensure_default_model(bool quiet) {
   return path;
 }
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::mission

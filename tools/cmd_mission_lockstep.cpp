@@ -1,4 +1,4 @@
-#include "tools/lockstep_missions.h"
+#include "tools/cmd_mission_lockstep.h"
 
 #include <algorithm>
 #include <chrono>

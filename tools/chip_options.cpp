@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "atr/model_file.h"
+#include "mission/default_model.h"
 #include "mission/survey_training.h"
 #include "sim/targets/target_type.h"
 #include "tools/cli_helpers.h"
@@ -101,6 +102,25 @@ atr::Model load_model_with_metadata(const std::string& path) {
   atr::Model m = atr::load_model(path, &version);
   fill_legacy_class_heights(m, version);
   return m;
+}
+
+std::optional<atr::Model> load_model_if(const std::optional<std::string>& path) {
+  if (!path) return std::nullopt;
+  // "default": the default model, built and cached the first time (mission/default_model.h)
+  if (mission::is_default_model(*path))
+    return load_model_with_metadata(
+        mission::ensure_default_model(false, [] { return stop_requested(); }));
+  return load_model_with_metadata(*path);  // older model files: heights of simulated types
+}
+
+void set_gate_threshold(std::optional<atr::Model>& model, std::optional<double> threshold) {
+  if (!threshold) return;
+  if (!model || !model->classification_gate) {
+    throw UsageError(
+        "--gate-threshold: the model has no classification gate (a model of "
+        "`train --surveys`, or the default model, has one)");
+  }
+  model->classification_gate->threshold = *threshold;
 }
 
 }  // namespace sonarloop::tools

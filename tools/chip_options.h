@@ -45,4 +45,14 @@ void fill_legacy_class_heights(atr::Model& m, std::uint16_t file_version);
 // atr::load_model, then fill_legacy_class_heights.
 atr::Model load_model_with_metadata(const std::string& path);
 
+// Loads a model file (older formats: class heights from the simulator, tools/chip_options.h),
+// or nullopt when no path is given; "default" is the default model (mission/default_model.h),
+// built and cached the first time.
+std::optional<atr::Model> load_model_if(const std::optional<std::string>& path);
+
+// --gate-threshold P: the classification gate's operating point (its target probability, 0 to
+// 1) instead of the one training chose; a point of the mission report's gate_froc.csv. Throws
+// UsageError when `model` has no classification gate (a model of `train --surveys` has one).
+void set_gate_threshold(std::optional<atr::Model>& model, std::optional<double> threshold);
+
 }  // namespace sonarloop::tools

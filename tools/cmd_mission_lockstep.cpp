@@ -12,8 +12,8 @@
 #include "drivers/json/json_writer.h"
 #include "mission/mission_report.h"
 #include "mission/mission_run.h"
+#include "tools/chip_options.h"
 #include "tools/cli_helpers.h"
-#include "tools/onboard_output.h"
 #include "tools/output_file.h"
 #include "tools/progress.h"
 

@@ -12,19 +12,24 @@
 #include <thread>
 #include <vector>
 
+#include "atr/contact_writer.h"
 #include "atr/onboard_pipeline.h"
+#include "atr/onboard_report.h"
 #include "atr/packet_queue.h"
 #include "drivers/net/udp_receiver.h"
 #include "drivers/xtf/xtf_file.h"
 #include "tools/args.h"
+#include "tools/chip_options.h"
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
-#include "tools/onboard_output.h"
 #include "tools/output_file.h"
 #include "tools/scenario_source.h"
 #include "tools/web_view.h"
 
 namespace sonarloop::tools {
+using atr::ContactWriter;
+using atr::onboard_stats_json;
+using atr::print_onboard_stats;
 namespace {
 
 // Largest UDP payload (IPv4).

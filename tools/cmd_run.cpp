@@ -9,21 +9,27 @@
 #include <thread>
 #include <vector>
 
+#include "atr/in_process_onboard.h"
+#include "atr/onboard_report.h"
 #include "drivers/xtf/xtf_codec.h"
 #include "emulator/emulator.h"
 #include "emulator/pacer.h"
 #include "emulator/realtime_priority.h"
 #include "emulator/run_report.h"
 #include "emulator/run_stats.h"
+#include "mission/onboard_device.h"
 #include "tools/args.h"
+#include "tools/chip_options.h"
 #include "tools/cli_helpers.h"
 #include "tools/commands.h"
-#include "tools/onboard_output.h"
 #include "tools/output_file.h"
 #include "tools/scenario_source.h"
 #include "tools/web_view.h"
 
 namespace sonarloop::tools {
+using atr::InProcessOnboard;
+using atr::print_onboard_stats;
+using mission::OnboardDevice;
 namespace {
 
 // A stop request (SIGINT/SIGTERM) during start-up: nothing was sent or recorded.

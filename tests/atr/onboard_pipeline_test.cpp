@@ -106,16 +106,7 @@ TEST_CASE("onboard pipeline: the model's detector rules decide an object seen in
   const std::vector<testing::SeabedObject> one_ping = {{1, 40 * 0.135, 12.0, 0.1, 0.40}};
   const std::vector<Bytes> datagrams = stream(150, one_ping, [](int) { return 0.0; });
   // a small two-class model (no gates, no clutter class): every object it sees is reported
-  const auto lc = testing::make_linear_classes(2, 8, 6, 3, 77);
-  std::vector<atr::LabelledChip> chips;
-  Rng rng(3, RngStream::kTraining, 4);
-  for (int c = 0; c < 2; ++c) {
-    for (int i = 0; i < 12; ++i)
-      chips.push_back({testing::sample_linear(lc, c, rng, 0.2), c ? "b" : "a", std::nullopt, ""});
-  }
-  atr::TrainOptions train;
-  train.p = 4;
-  const atr::Model plain = atr::train_model(chips, train);
+  const atr::Model plain = testing::small_two_class_model();
   atr::Model single = plain;
   single.detector_rules = atr::DetectorRules{1, 0.0};
   const auto contacts_with = [&](std::optional<atr::Model> model) {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "atr/chip.h"
+#include "atr/subspace_classifier.h"
 #include "common/rng.h"
 
 namespace sonarloop::testing {
@@ -134,6 +135,21 @@ inline atr::Chip draw_rotated(const std::vector<Segment>& shape, double aspect_d
     }
   }
   return chip;
+}
+
+// A small two-class model ("a", "b"; 8 x 6 chips, p = 4; no gates, no clutter class): every
+// object the onboard pipeline sees with it is classified and reported.
+inline atr::Model small_two_class_model() {
+  const auto lc = make_linear_classes(2, 8, 6, 3, 77);
+  std::vector<atr::LabelledChip> chips;
+  Rng rng(3, RngStream::kTraining, 4);
+  for (int c = 0; c < 2; ++c) {
+    for (int i = 0; i < 12; ++i)
+      chips.push_back({sample_linear(lc, c, rng, 0.2), c ? "b" : "a", std::nullopt, ""});
+  }
+  atr::TrainOptions train;
+  train.p = 4;
+  return atr::train_model(chips, train);
 }
 
 }  // namespace sonarloop::testing

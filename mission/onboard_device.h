@@ -1,0 +1,29 @@
+#pragma once
+// `run --classify`: the in-process onboard consumer (atr/in_process_onboard.h) as one of the
+// emulator's devices (emulator/device.h), where the simulator meets the onboard side.
+#include <span>
+#include <string>
+#include <vector>
+
+#include "atr/in_process_onboard.h"
+#include "emulator/device.h"
+
+namespace sonarloop::mission {
+
+// `run --classify`: the in-process consumer as one of the emulator's devices
+// (emulator/device.h): every ping's packet copied into its queue. `onboard` must outlive the
+// emulator.
+class OnboardDevice final : public emulator::Device {
+ public:
+  explicit OnboardDevice(atr::InProcessOnboard& onboard) : onboard_(onboard) {}
+  void ping(const emulator::PingSlot&, std::span<const std::uint8_t> packet) override {
+    onboard_.on_ping(packet);
+  }
+  bool on_wire() const override { return true; }
+  std::vector<std::string> describe() const override { return {}; }  // said by run itself
+
+ private:
+  atr::InProcessOnboard& onboard_;
+};
+
+}  // namespace sonarloop::mission

@@ -30,6 +30,12 @@ namespace sonarloop::tools {
 using atr::ContactWriter;
 using atr::onboard_stats_json;
 using atr::print_onboard_stats;
+using web::CpuMeter;
+using web::kWebStatsEveryS;
+using web::open_web_view;
+using web::print_web_summary;
+using web::web_stats_of;
+using web::WebView;
 namespace {
 
 // Largest UDP payload (IPv4).

@@ -30,6 +30,10 @@ namespace sonarloop::tools {
 using atr::InProcessOnboard;
 using atr::print_onboard_stats;
 using mission::OnboardDevice;
+using web::kWebStatsEveryS;
+using web::open_web_view;
+using web::print_web_summary;
+using web::WebView;
 namespace {
 
 // A stop request (SIGINT/SIGTERM) during start-up: nothing was sent or recorded.

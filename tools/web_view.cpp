@@ -1,35 +1,8 @@
 #include "tools/web_view.h"
 
-#include <time.h>
-
-#include <cstdio>
 #include <string>
 
-#include "tools/cli_helpers.h"
-
 namespace sonarloop::tools {
-namespace {
-
-std::int64_t clock_ns(clockid_t id) {
-  timespec ts{};
-  clock_gettime(id, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
-
-}  // namespace
-
-namespace {
-
-web::WebHubOptions hub_options(const std::optional<GeoPoint>& frame_origin) {
-  web::WebHubOptions o;
-  o.frame_origin = frame_origin;
-  return o;
-}
-
-}  // namespace
-
-WebView::WebView(const net::HostPort& address, const std::optional<GeoPoint>& frame_origin)
-    : hub(hub_options(frame_origin)), server(hub, address) {}
 
 std::optional<net::HostPort> web_option(const Args& args) {
   const auto text = args.get("--web");
@@ -45,15 +18,6 @@ std::optional<net::HostPort> web_option(const Args& args) {
   }
 }
 
-std::unique_ptr<WebView> open_web_view(const std::optional<net::HostPort>& address,
-                                       const std::optional<GeoPoint>& frame_origin,
-                                       const char* who) {
-  if (!address) return nullptr;
-  auto view = std::make_unique<WebView>(*address, frame_origin);
-  std::fprintf(stderr, "%s: web view on %s\n", who, view->server.url().c_str());
-  return view;
-}
-
 web::WebStats web_stats_of(const emulator::RunStats& s) {
   web::WebStats w;
   w.source = "run";
@@ -64,34 +28,6 @@ web::WebStats web_stats_of(const emulator::RunStats& s) {
   w.datagrams_lost = static_cast<std::int64_t>(s.udp_dropped);
   w.cpu_percent = s.cpu_percent();
   return w;
-}
-
-web::WebStats web_stats_of(const atr::OnboardStats& s, double cpu_percent) {
-  web::WebStats w;
-  w.source = "onboard";
-  w.pings = static_cast<std::int64_t>(s.receiver.pings);
-  w.datagrams_lost = static_cast<std::int64_t>(s.receiver.lost);
-  w.cpu_percent = cpu_percent;
-  w.contacts = static_cast<std::int64_t>(s.contacts);
-  return w;
-}
-
-void print_web_summary(const WebView& view) {
-  const web::WebHubCounters c = view.hub.counters();
-  std::fprintf(stderr,
-               "  web: %llu viewers (%llu refused), %llu lines, %llu events sent, %llu dropped "
-               "(slow browsers), %llu pings not shown\n",
-               ull(c.clients_total), ull(c.clients_refused), ull(c.lines), ull(c.events_sent),
-               ull(c.events_dropped), ull(c.pings_not_shown));
-}
-
-CpuMeter::CpuMeter()
-    : wall0_ns_(clock_ns(CLOCK_MONOTONIC)), cpu0_ns_(clock_ns(CLOCK_PROCESS_CPUTIME_ID)) {}
-
-double CpuMeter::percent() const {
-  const double wall = static_cast<double>(clock_ns(CLOCK_MONOTONIC) - wall0_ns_);
-  const double cpu = static_cast<double>(clock_ns(CLOCK_PROCESS_CPUTIME_ID) - cpu0_ns_);
-  return wall > 0 ? 100.0 * cpu / wall : 0.0;
 }
 
 void WebViewDevice::ping(const emulator::PingSlot&, std::span<const std::uint8_t> packet) {

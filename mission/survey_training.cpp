@@ -222,7 +222,8 @@ GateChoice choose_gate_threshold(const atr::LogisticGate& gate, const GateRows& 
     if (v.size() <= m) return 0.0;
     std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m), v.end(),
                      std::greater<>());
-    return std::nextafter(v[m], 2.0);  // passes q >= threshold: the (m + 1)-th largest fails
+    // passes q >= threshold: the (m + 1)-th largest fails (none can when it is 1: then 1)
+    return std::min(1.0, std::nextafter(v[m], 2.0));
   };
   GateChoice c;
   c.threshold = 1.0;

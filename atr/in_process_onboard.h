@@ -17,7 +17,7 @@
 namespace sonarloop::atr {
 
 // `run --classify`: the onboard pipeline on a thread of its own, fed with the emulator's pings
-// (OnboardDevice, below) through a queue, contacts to a file or stderr. Lossless: with
+// (mission/onboard_device.h) through a queue, contacts to a file or stderr. Lossless: with
 // --rate max the emulator waits for a free queue slot (the output then depends only on the
 // scenario); paced, a full queue drops the ping (counted) rather than delay the emulator.
 class InProcessOnboard {

@@ -45,7 +45,7 @@ void fill_legacy_class_heights(atr::Model& m, std::uint16_t file_version);
 // atr::load_model, then fill_legacy_class_heights.
 atr::Model load_model_with_metadata(const std::string& path);
 
-// Loads a model file (older formats: class heights from the simulator, tools/chip_options.h),
+// Loads a model file (older formats: class heights from the simulator, as above),
 // or nullopt when no path is given; "default" is the default model (mission/default_model.h),
 // built and cached the first time.
 std::optional<atr::Model> load_model_if(const std::optional<std::string>& path);

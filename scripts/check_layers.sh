@@ -17,6 +17,7 @@
 #   ranks    <- ranks, study, atr, sim, drivers, common (chips and the resolution study's run over
 #               the ranks of an MPI job)
 #   products <- products, sim, drivers, common (what scene and render write: images, truth)
+#   bench    <- bench, config, sim, drivers, common (the renderers' accuracy, measured by bench)
 #   tools    <- anything (the commands)
 #   units/ (header-only constants, e.g. angles) may be included from every layer
 # Every test folder tests/LAYER/... is held to its layer's map plus tests/ (the test support and
@@ -46,7 +47,8 @@ declare -A allowed=(
   [web]="web atr drivers common units"
   [ranks]="ranks study atr sim drivers common units"
   [products]="products sim drivers common units"
-  [tools]="tools products ranks web mission autonomy study emulator atr config sim drivers common units"
+  [bench]="bench config sim drivers common units"
+  [tools]="tools bench products ranks web mission autonomy study emulator atr config sim drivers common units"
   [units]="units"
 )
 

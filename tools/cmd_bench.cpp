@@ -10,10 +10,12 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <thread>
 
+#include "bench/bench_accuracy.h"
 #include "drivers/json/json_writer.h"
 #include "emulator/emulator.h"
 #include "sim/render/chip_renderer.h"
@@ -21,7 +23,6 @@
 #include "sim/render/track_renderer.h"
 #include "sim/scene/scene.h"
 #include "tools/args.h"
-#include "tools/bench_accuracy.h"
 #include "tools/commands.h"
 #include "tools/progress.h"
 #include "tools/scenario_source.h"
@@ -30,6 +31,34 @@ namespace sonarloop::tools {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// One JSON object as a line on stdout, flushed (what every section prints).
+void emit(const json::Writer& w) {
+  std::printf("%s\n", w.str().c_str());
+  std::fflush(stdout);
+}
+
+// The accuracy sections' output: JSON lines on stdout, a progress bar per section on stderr.
+class SectionPrinter {
+ public:
+  bench::SectionOutput output() {
+    return {emit, [this](const std::string& label, double done, double total) {
+              if (!bar_ || label != label_) {
+                bar_ = std::make_unique<Progress>(label, total);
+                label_ = label;
+              }
+              bar_->update(done);
+              if (done >= total) {
+                bar_->finish();
+                bar_.reset();
+              }
+            }};
+  }
+
+ private:
+  std::unique_ptr<Progress> bar_;
+  std::string label_;
+};
 using render::RendererKind;
 constexpr RendererKind kKinds[] = {RendererKind::kProfile, RendererKind::kRaytrace};
 
@@ -63,7 +92,7 @@ std::vector<Pose> line_poses(double north0, double east, double length, double s
 }
 
 render::SonarDesc bench_sonar(const config::Scenario& s, double range_m, double pixel_m) {
-  return isotropic_strip_sonar(s.sonar, range_m, pixel_m);
+  return bench::isotropic_strip_sonar(s.sonar, range_m, pixel_m);
 }
 
 // Renders `poses` with `threads` threads (render_track: prepares ahead, renders, in order);
@@ -370,8 +399,9 @@ int run_bench(const std::vector<std::string>& argv) {
   if (want("split")) bench_split(s);
   if (want("chips")) bench_chips(s, full ? 200 : 40);
   if (want("run")) bench_run(s, threads, 1000.0, full ? 300.0 : 100.0);
-  if (want("fidelity")) bench_fidelity(s, full);
-  if (want("accuracy")) bench_accuracy(s, full);
+  SectionPrinter printer;
+  if (want("fidelity")) bench::bench_fidelity(s, full, printer.output());
+  if (want("accuracy")) bench::bench_accuracy(s, full, printer.output());
   return 0;
 }
 

@@ -17,6 +17,7 @@
 //                           in the reference, both ways, edges more than kMaxEdgeMatchBins
 //                           apart counted as that many
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,10 +25,15 @@
 #include "drivers/json/json_writer.h"
 #include "sim/render/ping_renderer.h"
 
-namespace sonarloop::tools {
+namespace sonarloop::bench {
 
-// One JSON object as a line on stdout, flushed (what every bench section prints).
-void emit(const json::Writer& w);
+// Where a section's results and progress go (`sonarloop bench`: JSON lines on stdout, a
+// progress bar on stderr).
+struct SectionOutput {
+  std::function<void(const json::Writer&)> emit;  // one JSON object per result
+  // (label, steps done, steps in all): before the first step with 0, then after each
+  std::function<void(const std::string& label, double done, double total)> progress;
+};
 
 inline constexpr int kMaxEdgeMatchBins = 10;
 
@@ -59,7 +65,7 @@ LineErrors compare_lines(const LineSet& got, const LineSet& ref);
 
 // The sections; each prints JSON lines. full: the exhaustive grid and an 8x8-ray reference
 // (else 4x4 and a compact grid).
-void bench_fidelity(const config::Scenario& s, bool full);
-void bench_accuracy(const config::Scenario& s, bool full);
+void bench_fidelity(const config::Scenario& s, bool full, const SectionOutput& out);
+void bench_accuracy(const config::Scenario& s, bool full, const SectionOutput& out);
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::bench

@@ -1,4 +1,4 @@
-#include "tools/bench_accuracy.h"
+#include "bench/bench_accuracy.h"
 
 #include <algorithm>
 #include <chrono>
@@ -9,16 +9,9 @@
 #include "config/loader/sonar_loader.h"
 #include "drivers/json/json_writer.h"
 #include "sim/render/chip_renderer.h"
-#include "tools/progress.h"
 #include "units/angles.h"
 
-namespace sonarloop::tools {
-
-void emit(const json::Writer& w) {
-  std::printf("%s\n", w.str().c_str());
-  std::fflush(stdout);
-}
-
+namespace sonarloop::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -175,7 +168,7 @@ LineErrors compare_lines(const LineSet& got, const LineSet& ref) {
   return e;
 }
 
-void bench_fidelity(const config::Scenario& s, bool full) {
+void bench_fidelity(const config::Scenario& s, bool full, const SectionOutput& out) {
   // pings across each target of the scenario (5 cm pixels, 30 m range)
   const render::SonarDesc base = isotropic_strip_sonar(s.sonar, 30.0, 0.05);
   std::vector<Pose> poses;
@@ -222,8 +215,9 @@ void bench_fidelity(const config::Scenario& s, bool full) {
     settings.push_back({render::RendererKind::kProfile, 2, 2, 0.025, h, 0.5});
   if (!full) settings.push_back({render::RendererKind::kRaytrace, 4, 2, 0.025, 0.0, 0.5});
 
-  Progress bar("fidelity: " + std::to_string(settings.size()) + " settings",
-               static_cast<double>(settings.size()));
+  const std::string label = "fidelity: " + std::to_string(settings.size()) + " settings";
+  const auto total = static_cast<double>(settings.size());
+  if (out.progress) out.progress(label, 0.0, total);
   int done = 0;
   for (const Setting& st : settings) {
     scene::SceneDesc sdsc = s.scene;
@@ -251,13 +245,13 @@ void bench_fidelity(const config::Scenario& s, bool full) {
     w.field("terrain_edge_error_bins", e.terrain_edge_bins, 4);
     w.field("reference", ref_name);
     w.end_object();
-    emit(w);
-    bar.update(++done);
+    if (out.emit) out.emit(w);
+    ++done;
+    if (out.progress) out.progress(label, done, total);
   }
-  bar.finish();
 }
 
-void bench_accuracy(const config::Scenario& s, bool full) {
+void bench_accuracy(const config::Scenario& s, bool full, const SectionOutput& out) {
   const int per_target = full ? 11 : 5;
   std::vector<Case> cases;
   std::vector<std::pair<std::string, scene::SceneDesc>> scenes = {{s.scene.name, s.scene}};
@@ -298,8 +292,9 @@ void bench_accuracy(const config::Scenario& s, bool full) {
     int n = 0;
   };
   Sum sums[2];
-  Progress bar("accuracy: " + std::to_string(cases.size()) + " cases",
-               static_cast<double>(cases.size()));
+  const std::string label = "accuracy: " + std::to_string(cases.size()) + " cases";
+  const auto total = static_cast<double>(cases.size());
+  if (out.progress) out.progress(label, 0.0, total);
   int done = 0;
   for (const Case& c : cases) {
     const scene::Scene sc(c.scene);
@@ -331,11 +326,11 @@ void bench_accuracy(const config::Scenario& s, bool full) {
       w.field("reference", "raytrace " + std::to_string(ref_fid.rays_per_bin) + "x" +
                                std::to_string(ref_fid.along_track_rays));
       w.end_object();
-      emit(w);
+      if (out.emit) out.emit(w);
     }
-    bar.update(++done);
+    ++done;
+    if (out.progress) out.progress(label, done, total);
   }
-  bar.finish();
   for (int k = 0; k < 2; ++k) {
     const Sum& sum = sums[k];
     if (sum.n == 0) continue;
@@ -346,8 +341,8 @@ void bench_accuracy(const config::Scenario& s, bool full) {
     w.field("shadow_edge_error_bins", sum.target_edge / sum.n, 4);
     w.field("terrain_edge_error_bins", sum.terrain_edge / sum.n, 4);
     w.end_object();
-    emit(w);
+    if (out.emit) out.emit(w);
   }
 }
 
-}  // namespace sonarloop::tools
+}  // namespace sonarloop::bench

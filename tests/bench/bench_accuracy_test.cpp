@@ -1,0 +1,73 @@
+// The line comparison of the bench's accuracy sections (bench/bench_accuracy.h) on lines with a
+// known answer: identical lines have no error; a line 10 times brighter is 10 dB off in every
+// bin lit in both; a shadow edge or a lit/dark transition moved by k bins is k bins off; the
+// isotropic strip sonar has the pixel as its bin and along-track resolution.
+#include "bench/bench_accuracy.h"
+
+#include <catch2/catch.hpp>
+#include <vector>
+
+using namespace sonarloop;
+
+namespace {
+
+// One ping: port dark, starboard lit from bin 10 to `lit_end` (exclusive) at `level` but for a
+// dark run from `dark_first` (10 bins), a target's shadow ending at `shadow_last`.
+bench::LineSet one_ping(float level, int lit_end, int shadow_last, int dark_first = 50) {
+  bench::LineSet s;
+  render::PingLines l;
+  l.port.assign(100, 0.0f);
+  l.stbd.assign(100, 0.0f);
+  for (int i = 10; i < lit_end; ++i) {
+    if (i < dark_first || i >= dark_first + 10) l.stbd[static_cast<std::size_t>(i)] = level;
+  }
+  s.lines.push_back(l);
+  render::TargetTrace t;
+  t.target = 0;
+  t.side = 1;
+  t.shadow_first = 40;
+  t.shadow_last = shadow_last;
+  s.traces.push_back({t});
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("bench accuracy: the line comparison measures what it says") {
+  const bench::LineSet ref = one_ping(1.0f, 80, 50);
+  const bench::LineErrors same = bench::compare_lines(ref, ref);
+  CHECK(same.rms_db == 0.0);
+  CHECK(same.lit_bins == 60);
+  CHECK(same.terrain_edges == 4);  // the dark run's two transitions, both ways
+  CHECK(same.target_edge_bins == 0.0);
+  CHECK(same.target_edges == 1);
+  CHECK(same.terrain_edge_bins == 0.0);
+
+  const bench::LineErrors brighter = bench::compare_lines(one_ping(10.0f, 80, 50), ref);
+  CHECK(brighter.rms_db == Approx(10.0));
+  CHECK(brighter.lit_bins == 60);
+
+  // the target's shadow ends 3 bins later
+  CHECK(bench::compare_lines(one_ping(1.0f, 80, 53), ref).target_edge_bins == Approx(3.0));
+
+  // the dark run 2 bins further: each of its transitions 2 bins from the reference's
+  CHECK(bench::compare_lines(one_ping(1.0f, 80, 50, 52), ref).terrain_edge_bins == Approx(2.0));
+  // the lit run ending 2 bins early makes a transition the reference does not have (before its
+  // last lit bin): counted as kMaxEdgeMatchBins, one of five
+  const bench::LineErrors shorter = bench::compare_lines(one_ping(1.0f, 78, 50), ref);
+  CHECK(shorter.terrain_edges == 5);
+  CHECK(shorter.terrain_edge_bins == Approx(bench::kMaxEdgeMatchBins / 5.0));
+}
+
+TEST_CASE("bench accuracy: the isotropic strip sonar") {
+  render::SonarDesc base;
+  base.bin_size_m = 0.02;
+  base.pulse_length_s = 1e-4;
+  const render::SonarDesc s = bench::isotropic_strip_sonar(base, 30.0, 0.05);
+  CHECK(s.along_track == render::AlongTrackModel::kStrip);
+  CHECK(s.max_range_m == 30.0);
+  CHECK(s.bin_size_m == 0.05);
+  CHECK(s.along_track_resolution_m == 0.05);
+  CHECK(s.pulse_length_s == 0.0);
+  CHECK(s.chirp_bandwidth_hz == 0.0);
+}

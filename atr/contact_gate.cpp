@@ -91,7 +91,8 @@ void classification_features(const Detection& d, const Classification& r, const 
       d2 = v;
     }
   }
-  const double root_n = std::sqrt(static_cast<double>(std::max<std::size_t>(1, m.feature_count())));
+  const double root_n =
+      std::sqrt(static_cast<double>(std::max<std::size_t>(1, m.fused_feature_count())));
   if (!std::isfinite(d1)) d1 = root_n;  // no target class: as far as an unrelated chip
   if (!std::isfinite(dc)) dc = d1;      // no clutter class: no gap
   if (!std::isfinite(d2)) d2 = d1;

@@ -10,7 +10,7 @@ namespace {
 // t_c, or sqrt(feature pixels) for an uncalibrated class.
 double class_scale(const Model& m, std::size_t c) {
   const float t = m.classes[c].typical_distance;
-  return t > 0.0f ? t : std::sqrt(static_cast<double>(m.feature_count()));
+  return t > 0.0f ? t : std::sqrt(static_cast<double>(m.fused_feature_count()));
 }
 
 double model_scale(const Model& m) {

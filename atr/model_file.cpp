@@ -107,19 +107,7 @@ class Reader {
   bool truncated_ = false;
 };
 
-void write_class(Writer& w, const ClassModel& c, std::size_t n) {
-  if (c.name.size() > kMaxNameBytes) {
-    throw std::runtime_error("class name '" + c.name + "' is longer than 255 bytes");
-  }
-  w.u16(static_cast<std::uint16_t>(c.name.size()));
-  w.bytes(c.name.data(), c.name.size());
-  w.u8(c.mine_like ? 1 : 0);
-  w.u8(static_cast<std::uint8_t>((c.height_m ? kHeightKnown : 0) |
-                                 (c.clutter ? kClutterClass : 0)));  // version 3 flags
-  w.u32(static_cast<std::uint32_t>(c.subspaces.size()));
-  w.f32(c.reject_distance);  // version 2
-  w.f32(c.typical_distance);
-  w.f64(c.height_m.value_or(0.0));  // version 3
+void write_subspaces(Writer& w, const ClassModel& c, std::size_t n) {
   for (const Subspace& s : c.subspaces) {
     w.f64(s.aspect_min_deg);
     w.f64(s.aspect_max_deg);
@@ -136,48 +124,25 @@ void write_class(Writer& w, const ClassModel& c, std::size_t n) {
   }
 }
 
-ClassModel read_class(Reader& r, const Model& m, int version, const char* kind, std::size_t index) {
-  ClassModel c;
-  const std::string label = std::string(kind) + " " + std::to_string(index);
-  const std::uint16_t len = r.u16("class name length");
-  if (len == 0 || len > kMaxNameBytes) {
-    r.fail(label + ": name length " + std::to_string(len) + " (allowed 1 to 255)");
+void write_class(Writer& w, const ClassModel& c, std::size_t n) {
+  if (c.name.size() > kMaxNameBytes) {
+    throw std::runtime_error("class name '" + c.name + "' is longer than 255 bytes");
   }
-  c.name = r.str(len, "class name");
-  const std::uint8_t mine = r.u8("mine_like flag");
-  if (mine > 1)
-    r.fail(label + " '" + c.name + "': mine_like flag " + std::to_string(mine) + " (0 or 1)");
-  c.mine_like = mine == 1;
-  // a reserved byte before version 3 (ignored, as those versions did)
-  const std::uint8_t flags = r.u8(version >= 3 ? "class flags" : "reserved byte");
-  const std::uint8_t allowed = version >= 4 ? kHeightKnown | kClutterClass : kHeightKnown;
-  if (version >= 3 && (flags & ~allowed) != 0) {
-    r.fail(label + " '" + c.name + "': flags byte " + std::to_string(flags) + " (allowed bits " +
-           std::to_string(allowed) + ")");
-  }
-  c.clutter = version >= 4 && (flags & kClutterClass) != 0;
-  const std::uint32_t count = r.u32("subspace count");
-  if (count == 0 || count > static_cast<std::uint32_t>(m.aspect_sectors)) {
-    r.fail(label + " '" + c.name + "': subspace count " + std::to_string(count) +
-           " (allowed 1 to the aspect sector count " + std::to_string(m.aspect_sectors) + ")");
-  }
-  if (version >= 2) {
-    c.reject_distance = r.f32("reject distance");
-    c.typical_distance = r.f32("typical distance");
-  }
-  if (version >= 3) {
-    const double h = r.f64("height_m");
-    if (flags & kHeightKnown) {
-      if (!valid_class_height(h)) {
-        r.fail(label + " '" + c.name + "': height " + std::to_string(h) +
-               " m (allowed 0 to 100 m)");
-      }
-      c.height_m = h;
-    } else if (h != 0.0) {
-      r.fail(label + " '" + c.name + "': height " + std::to_string(h) +
-             " m, but the flags say unknown (then 0)");
-    }
-  }
+  w.u16(static_cast<std::uint16_t>(c.name.size()));
+  w.bytes(c.name.data(), c.name.size());
+  w.u8(c.mine_like ? 1 : 0);
+  w.u8(static_cast<std::uint8_t>((c.height_m ? kHeightKnown : 0) |
+                                 (c.clutter ? kClutterClass : 0)));  // version 3 flags
+  w.u32(static_cast<std::uint32_t>(c.subspaces.size()));
+  w.f32(c.reject_distance);  // version 2
+  w.f32(c.typical_distance);
+  w.f64(c.height_m.value_or(0.0));  // version 3
+  write_subspaces(w, c, n);
+}
+
+// `count` subspace records of class `c` (labelled `label` in errors).
+void read_subspaces(Reader& r, const Model& m, ClassModel& c, const std::string& label,
+                    std::uint32_t count) {
   const std::size_t n = m.feature_count();
   for (std::uint32_t s = 0; s < count; ++s) {
     Subspace sub;
@@ -201,7 +166,127 @@ ClassModel read_class(Reader& r, const Model& m, int version, const char* kind, 
     r.f32s(sub.basis.data(), n * rank, "basis");
     c.subspaces.push_back(std::move(sub));
   }
+}
+
+std::uint32_t read_subspace_count(Reader& r, const Model& m, const ClassModel& c,
+                                  const std::string& label) {
+  const std::uint32_t count = r.u32("subspace count");
+  if (count == 0 || count > static_cast<std::uint32_t>(m.aspect_sectors)) {
+    r.fail(label + " '" + c.name + "': subspace count " + std::to_string(count) +
+           " (allowed 1 to the aspect sector count " + std::to_string(m.aspect_sectors) + ")");
+  }
+  return count;
+}
+
+void write_preprocess(Writer& w, const ChipPreprocess& p) {
+  w.f64(p.crop_fraction);
+  w.u32(static_cast<std::uint32_t>(p.multilook_px));
+  w.u8(static_cast<std::uint8_t>(p.levels));
+  w.u8(0);
+  w.u8(0);
+  w.u8(0);
+  w.f64(p.threshold_db);
+}
+
+ChipPreprocess read_preprocess(Reader& r) {
+  ChipPreprocess p;
+  p.crop_fraction = r.f64("crop fraction");
+  const std::uint32_t looks = r.u32("multilook window");
+  const std::uint8_t levels = r.u8("levels mode");
+  r.u8("reserved byte");
+  r.u8("reserved byte");
+  r.u8("reserved byte");
+  p.threshold_db = r.f64("three-level threshold");
+  p.multilook_px = static_cast<int>(std::min<std::uint32_t>(looks, 1u << 20));
+  p.levels = static_cast<ChipLevels>(levels);
+  try {
+    validate_preprocess(p);
+  } catch (const std::invalid_argument& e) {
+    r.fail(e.what());
+  }
+  return p;
+}
+
+ClassModel read_class(Reader& r, const Model& m, int version, const char* kind, std::size_t index) {
+  ClassModel c;
+  const std::string label = std::string(kind) + " " + std::to_string(index);
+  const std::uint16_t len = r.u16("class name length");
+  if (len == 0 || len > kMaxNameBytes) {
+    r.fail(label + ": name length " + std::to_string(len) + " (allowed 1 to 255)");
+  }
+  c.name = r.str(len, "class name");
+  const std::uint8_t mine = r.u8("mine_like flag");
+  if (mine > 1)
+    r.fail(label + " '" + c.name + "': mine_like flag " + std::to_string(mine) + " (0 or 1)");
+  c.mine_like = mine == 1;
+  // a reserved byte before version 3 (ignored, as those versions did)
+  const std::uint8_t flags = r.u8(version >= 3 ? "class flags" : "reserved byte");
+  const std::uint8_t allowed = version >= 4 ? kHeightKnown | kClutterClass : kHeightKnown;
+  if (version >= 3 && (flags & ~allowed) != 0) {
+    r.fail(label + " '" + c.name + "': flags byte " + std::to_string(flags) + " (allowed bits " +
+           std::to_string(allowed) + ")");
+  }
+  c.clutter = version >= 4 && (flags & kClutterClass) != 0;
+  const std::uint32_t count = read_subspace_count(r, m, c, label);
+  if (version >= 2) {
+    c.reject_distance = r.f32("reject distance");
+    c.typical_distance = r.f32("typical distance");
+  }
+  if (version >= 3) {
+    const double h = r.f64("height_m");
+    if (flags & kHeightKnown) {
+      if (!valid_class_height(h)) {
+        r.fail(label + " '" + c.name + "': height " + std::to_string(h) +
+               " m (allowed 0 to 100 m)");
+      }
+      c.height_m = h;
+    } else if (h != 0.0) {
+      r.fail(label + " '" + c.name + "': height " + std::to_string(h) +
+             " m, but the flags say unknown (then 0)");
+    }
+  }
+  read_subspaces(r, m, c, label, count);
   return c;
+}
+
+// version 6: the views, after the detector rules
+void write_views(Writer& w, const Model& m) {
+  w.u32(static_cast<std::uint32_t>(m.views.size()));
+  for (const ModelView& v : m.views) {
+    write_preprocess(w, v.preprocess);
+    for (const ClassModel& c : v.classes) {
+      w.u32(static_cast<std::uint32_t>(c.subspaces.size()));
+      write_subspaces(w, c, m.feature_count());
+    }
+  }
+}
+
+void read_views(Reader& r, Model& m) {
+  const std::uint32_t views = r.u32("view count");
+  if (views > kMaxModelViews) {
+    r.fail("view count " + std::to_string(views) + " (0 to " + std::to_string(kMaxModelViews) +
+           ")");
+  }
+  for (std::uint32_t v = 0; v < views; ++v) {
+    ModelView view;
+    view.preprocess = read_preprocess(r);
+    if (view.preprocess.crop_fraction != m.preprocess.crop_fraction) {
+      r.fail("view " + std::to_string(v) + ": crop fraction " +
+             std::to_string(view.preprocess.crop_fraction) + ", the model's " +
+             std::to_string(m.preprocess.crop_fraction) + " (they must be the same)");
+    }
+    for (const ClassModel& primary : m.classes) {
+      ClassModel c;
+      c.name = primary.name;
+      c.mine_like = primary.mine_like;
+      c.clutter = primary.clutter;
+      c.height_m = primary.height_m;
+      const std::string label = "view " + std::to_string(v) + " class";
+      read_subspaces(r, m, c, label, read_subspace_count(r, m, c, label));
+      view.classes.push_back(std::move(c));
+    }
+    m.views.push_back(std::move(view));
+  }
 }
 
 // version 4: the gates, after the groups
@@ -285,13 +370,7 @@ std::vector<std::uint8_t> encode_model(const Model& m) {
   w.u32(static_cast<std::uint32_t>(m.groups.size()));
   w.u32(0);
   // version 2: the pre-processing record
-  w.f64(m.preprocess.crop_fraction);
-  w.u32(static_cast<std::uint32_t>(m.preprocess.multilook_px));
-  w.u8(static_cast<std::uint8_t>(m.preprocess.levels));
-  w.u8(0);
-  w.u8(0);
-  w.u8(0);
-  w.f64(m.preprocess.threshold_db);
+  write_preprocess(w, m.preprocess);
   for (const auto& c : m.classes)
     write_class(w, c, m.feature_count());
   for (const auto& g : m.groups)
@@ -310,6 +389,7 @@ std::vector<std::uint8_t> encode_model(const Model& m) {
     w.u32(static_cast<std::uint32_t>(m.detector_rules->min_pings));
     w.f64(m.detector_rules->min_along_m);
   }
+  write_views(w, m);  // version 6
   w.u32(crc32(w.data()));
   return std::move(w.data());
 }
@@ -360,22 +440,8 @@ Model decode_model(std::span<const std::uint8_t> bytes, const std::string& name,
     m.chip_height = static_cast<int>(h);
     m.p = static_cast<int>(p);
     m.aspect_sectors = static_cast<int>(sectors);
-    if (version >= 2) {  // version 1 models have no pre-processing (the identity)
-      m.preprocess.crop_fraction = r.f64("crop fraction");
-      const std::uint32_t looks = r.u32("multilook window");
-      const std::uint8_t levels = r.u8("levels mode");
-      r.u8("reserved byte");
-      r.u8("reserved byte");
-      r.u8("reserved byte");
-      m.preprocess.threshold_db = r.f64("three-level threshold");
-      m.preprocess.multilook_px = static_cast<int>(std::min<std::uint32_t>(looks, 1u << 20));
-      m.preprocess.levels = static_cast<ChipLevels>(levels);
-      try {
-        validate_preprocess(m.preprocess);
-      } catch (const std::invalid_argument& e) {
-        r.fail(e.what());
-      }
-    }
+    // version 1 models have no pre-processing (the identity)
+    if (version >= 2) m.preprocess = read_preprocess(r);
     for (std::uint32_t c = 0; c < classes; ++c)
       m.classes.push_back(read_class(r, m, version, "class", c));
     for (std::uint32_t g = 0; g < groups; ++g)
@@ -408,6 +474,7 @@ Model decode_model(std::span<const std::uint8_t> bytes, const std::string& name,
         m.detector_rules = d;
       }
     }
+    if (version >= 6) read_views(r, m);
     r.need(4, "the checksum trailer");
     if (r.left() > 4) {
       r.fail(std::to_string(r.left() - 4) + " unexpected bytes after the last record");

@@ -1,8 +1,9 @@
 #pragma once
 // The classifier's model file (.slpca): a versioned little-endian binary format.
 //
-// Version 5 layout (all integers unsigned little-endian, floats IEEE 754 little-endian). Version
-// 4 is the same without the detector rules record (read as none: the detector's own options);
+// Version 6 layout (all integers unsigned little-endian, floats IEEE 754 little-endian). Version
+// 5 is the same without the views record (read as none); version 4 also without the detector
+// rules record (read as none: the detector's own options);
 // version 3 without the clutter flag (flags bit 1) and the gates; version 2 without the class
 // height (its flags byte is 0); version 1 also lacks the pre-processing record (read as no
 // pre-processing) and the reject and typical distances. Older versions are read with every class's
@@ -12,7 +13,7 @@
 //   header, 36 bytes
 //     0   u8[5]  magic "SLPCA"
 //     5   u8     0 (reserved)
-//     6   u16    format version (5)
+//     6   u16    format version (6)
 //     8   u32    chip width (pixels)
 //    12   u32    chip height (pixels)                      n = width * height
 //    16   u32    p, the requested subspace dimension
@@ -55,6 +56,11 @@
 //   detector rules (version 5; atr/subspace_classifier.h DetectorRules)
 //     u8     1 when recorded (then the two fields follow), 0 for none; u8[3] 0
 //     u32    min_pings (1 to 1000), f64 min_along_m (0 to 100)
+//   views (version 6; atr/subspace_classifier.h ModelView, "Fused readings")
+//     u32    view count V (0 to 3), then each view:
+//       pre-processing record, 24 bytes, as above (its crop fraction the model's)
+//       C records, one per class in the model's order (its name and flags are the class's):
+//         u32 subspace count S (>= 1), then S subspace records as above
 //   trailer
 //     u32    CRC-32 (IEEE 802.3 polynomial, as zlib's crc32) of every preceding byte
 //
@@ -71,7 +77,7 @@
 
 namespace sonarloop::atr {
 
-inline constexpr std::uint16_t kModelFileVersion = 5;
+inline constexpr std::uint16_t kModelFileVersion = 6;
 inline constexpr char kModelFileMagic[5] = {'S', 'L', 'P', 'C', 'A'};
 
 // The file's bytes for a (valid) model. Throws std::runtime_error if validate_model() fails.

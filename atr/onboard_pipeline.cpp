@@ -239,9 +239,11 @@ Contact OnboardPipeline::assess(const Detection& d, bool classify, CandidateRepo
           c.runner_up_distance = r.runner_up_distance;
           c.mine_distance = r.mine_distance;
           c.non_mine_distance = r.non_mine_distance;
-          const Subspace& sub = cls.subspaces[static_cast<std::size_t>(r.subspace_index)];
-          c.aspect_min_deg = sub.aspect_min_deg;
-          c.aspect_max_deg = sub.aspect_max_deg;
+          if (r.subspace_index >= 0) {  // else unknown: [0, 360)
+            const Subspace& sub = cls.subspaces[static_cast<std::size_t>(r.subspace_index)];
+            c.aspect_min_deg = sub.aspect_min_deg;
+            c.aspect_max_deg = sub.aspect_max_deg;
+          }
           if (std::isfinite(cls.reject_distance)) {
             c.open_set_score = r.open_set_score;
             c.unknown = r.unknown;

@@ -81,6 +81,16 @@ void validate_class(const ClassModel& c, const Model& m, const std::string& what
   }
 }
 
+// The index of c's subspace of s's aspect sector, -1 when it has none.
+int same_sector(const ClassModel& c, const Subspace& s) {
+  for (std::size_t k = 0; k < c.subspaces.size(); ++k) {
+    if (c.subspaces[k].aspect_min_deg == s.aspect_min_deg &&
+        c.subspaces[k].aspect_max_deg == s.aspect_max_deg)
+      return static_cast<int>(k);
+  }
+  return -1;
+}
+
 }  // namespace
 
 float nearest_subspace(const ClassModel& c, const Eigen::VectorXf& x, Eigen::VectorXf& work_n,
@@ -161,6 +171,42 @@ void validate_model(const Model& m) {
     }
     validate_gate(*m.classification_gate);
   }
+  if (m.views.size() > kMaxModelViews) {
+    throw std::runtime_error("model has " + std::to_string(m.views.size()) + " views (at most " +
+                             std::to_string(kMaxModelViews) + ")");
+  }
+  for (std::size_t v = 0; v < m.views.size(); ++v) {
+    const ModelView& view = m.views[v];
+    const std::string what = "view " + std::to_string(v) + " class";
+    try {
+      validate_preprocess(view.preprocess);
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error("model view " + std::to_string(v) + ": " + e.what());
+    }
+    if (view.preprocess.crop_fraction != m.preprocess.crop_fraction) {
+      throw std::runtime_error("model view " + std::to_string(v) +
+                               ": its crop fraction differs from the model's (the readings "
+                               "must have the same feature count)");
+    }
+    if (view.classes.size() != m.classes.size()) {
+      throw std::runtime_error("model view " + std::to_string(v) + " has " +
+                               std::to_string(view.classes.size()) + " classes, the model " +
+                               std::to_string(m.classes.size()));
+    }
+    for (std::size_t i = 0; i < view.classes.size(); ++i) {
+      const ClassModel& c = view.classes[i];
+      if (c.name != m.classes[i].name) {
+        throw std::runtime_error("model view " + std::to_string(v) + " class " + std::to_string(i) +
+                                 " is '" + c.name + "', the model's '" + m.classes[i].name + "'");
+      }
+      if (std::isfinite(c.reject_distance) || c.typical_distance != 0.0f) {
+        throw std::runtime_error("model view " + std::to_string(v) + " class '" + c.name +
+                                 "' has its own reject or typical distance (the model's "
+                                 "classes hold them, on the fused distance)");
+      }
+      validate_class(c, m, what);
+    }
+  }
   if (m.detector_rules) {
     const DetectorRules& d = *m.detector_rules;
     if (d.min_pings < 1 || d.min_pings > kMaxDetectorRulePings) {
@@ -203,12 +249,18 @@ Classifier::Classifier(Model model) : model_(std::move(model)) {
   scratch_.reserve(model_.chip_width, model_.chip_height);
   const auto n = static_cast<Eigen::Index>(model_.feature_count());
   int max_rank = 0;
-  for (const auto* list : {&model_.classes, &model_.groups}) {
-    for (const auto& c : *list) {
+  auto widen = [&max_rank](const std::vector<ClassModel>& list) {
+    for (const auto& c : list) {
       for (const auto& s : c.subspaces)
         max_rank = std::max(max_rank, s.rank());
     }
-  }
+  };
+  widen(model_.classes);
+  widen(model_.groups);
+  for (const ModelView& v : model_.views)
+    widen(v.classes);
+  view_x_.assign(model_.views.size(), Eigen::VectorXf::Zero(n));
+  view_blank_.assign(model_.views.size(), 0);
   x_.setZero(n);
   work_n_.setZero(n);
   work_p_.setZero(std::max(max_rank, 1));
@@ -218,6 +270,16 @@ Classifier::Classifier(Model model) : model_(std::move(model)) {
 
 float Classifier::class_distance(const ClassModel& c, int* best_subspace) {
   return nearest_subspace(c, x_, work_n_, work_p_, best_subspace);
+}
+
+void Classifier::read_views(ChipView chip) {
+  for (std::size_t v = 0; v < model_.views.size(); ++v) {
+    const ChipView features = preprocess_into(chip, model_.views[v].preprocess, scratch_);
+    const ChipCheck c =
+        normalise_chip(features, std::span<float>(view_x_[v].data(), model_.feature_count()));
+    // the chip passed the primary reading's checks (size, finite): only constant remains
+    view_blank_[v] = c.ok() ? 0 : 1;
+  }
 }
 
 ChipCheck Classifier::classify(ChipView chip) {
@@ -231,19 +293,48 @@ ChipCheck Classifier::classify(ChipView chip) {
       model_.preprocess.is_identity() ? chip : preprocess_into(chip, model_.preprocess, scratch_);
   const ChipCheck norm =
       normalise_chip(features, std::span<float>(x_.data(), model_.feature_count()));
-  if (!norm.ok()) {
+  // with further readings, a chip constant in the first one is blank there (a chip without a
+  // highlight, read with a shadow reading beside); a chip blank in every reading is unusable
+  const bool blank = !norm.ok() && norm.status == ChipStatus::kConstant && !model_.views.empty();
+  read_views(chip);
+  if (blank &&
+      std::all_of(view_blank_.begin(), view_blank_.end(), [](unsigned char b) { return b != 0; })) {
     check = norm;
+  } else if (!norm.ok() && !blank) {
+    check = norm;
+  }
+  if (!check.ok()) {
     check.expected_width = model_.chip_width;
     check.expected_height = model_.chip_height;
     return check;
   }
+  // a blank reading is as far from every class as an unrelated chip: n
+  const auto blank_square = static_cast<float>(model_.feature_count());
 
-  // identification: the nearest class (eq. 10), and the runner-up
+  // identification: the nearest class (eq. 10, fused over the readings), and the runner-up
   float best = kInfinity, second = kInfinity;
   int best_i = -1, second_i = -1;
   for (std::size_t i = 0; i < model_.classes.size(); ++i) {
     int sub = -1;
-    const float d = class_distance(model_.classes[i], &sub);
+    float d = blank ? 0.0f : class_distance(model_.classes[i], &sub);
+    if (!model_.views.empty()) {
+      float square = blank ? blank_square : d * d;
+      for (std::size_t v = 0; v < model_.views.size(); ++v) {
+        int view_sub = -1;
+        const float dv = view_blank_[v] ? 0.0f
+                                        : nearest_subspace(model_.views[v].classes[i], view_x_[v],
+                                                           work_n_, work_p_, &view_sub);
+        square += view_blank_[v] ? blank_square : dv * dv;
+        // blank in the first reading: the aspect sector of the first other reading's nearest
+        // subspace (-1 when the class's first reading has no subspace of that sector)
+        if (blank && sub < 0 && view_sub >= 0) {
+          sub =
+              same_sector(model_.classes[i],
+                          model_.views[v].classes[i].subspaces[static_cast<std::size_t>(view_sub)]);
+        }
+      }
+      d = std::sqrt(square);
+    }
     r.class_distance[i] = d;
     r.class_subspace[i] = sub;
     if (d < best) {
@@ -267,7 +358,7 @@ ChipCheck Classifier::classify(ChipView chip) {
 
   // mine / non-mine (Section 4.1.2)
   r.mine_like_by_identity = model_.classes[static_cast<std::size_t>(best_i)].mine_like;
-  if (!model_.groups.empty()) {
+  if (!model_.groups.empty() && !blank) {
     int sub = -1;
     r.mine_distance = class_distance(model_.groups[0], &sub);
     r.non_mine_distance = class_distance(model_.groups[1], &sub);

@@ -51,6 +51,22 @@
 // target types: `sonarloop train` fills the metadata of simulated target classes (manta, ...)
 // from the simulator's table, and of any class from its --mine-like and --height options.
 //
+// Fused readings (ours; docs/autonomy.md, "Highlight and shadow fused"). A model may read each
+// chip more than one way: besides its own pre-processing and classes, each view (ModelView)
+// pre-processes the chip otherwise (the shadow only, levels below_seabed, beside a highlight-only
+// model) and holds subspaces of the same classes, trained on the same chips. A chip's distance
+// to a class is then the root of its summed squared eq. 10 distances over the readings,
+//     D_c = sqrt(d_c^2 + sum_v d_{v,c}^2),
+// eq. 10 for the readings stacked into one vector (each normalised by eq. 9 on its own) against
+// the block-diagonal subspace of their subspaces; the nearest subspace of each reading is its
+// own. A reading in which the chip is constant (a shadow-only reading of a chip without any
+// pixel below the seabed, a highlight-only one of a cropped chip without a highlight) is blank:
+// as far from every class as an unrelated chip, its n added to every class's square, which
+// leaves the ranking to the other readings; in training it is left out of that reading's
+// subspaces. A chip blank in every reading is unusable (constant). Distances then scale
+// with sqrt(n (1 + views)) (Model::fused_feature_count). Group subspaces are the primary
+// reading's only.
+//
 // Mine / non-mine (Section 4.1.2). On top of
 // identification the classifier reports a group score for each group, the smallest class
 // distance within it; the decision is the group of smaller score, which is the group of the
@@ -144,6 +160,16 @@ struct ClassModel {
   float typical_distance = 0.0f;
 };
 
+// Another reading of a model's chips (see "Fused readings" above).
+struct ModelView {
+  ChipPreprocess preprocess;  // with the model's crop fraction (the same feature count)
+  // one per model class, in the model's order and with its name, mine_like, clutter and
+  // height; only their subspaces are read (reject and typical distances are the model
+  // classes', on the fused distance, so these keep +infinity and 0)
+  std::vector<ClassModel> classes;
+};
+inline constexpr std::size_t kMaxModelViews = 3;
+
 // The detector's object rules a model's gates were trained behind (atr/detector.h,
 // DetectorOptions::min_pings and min_along_m): a gate's threshold is chosen on what that detector
 // reports, so the onboard pipeline runs its detector with the rules of the model it classifies
@@ -173,6 +199,8 @@ struct Model {
   std::optional<LogisticGate> classification_gate;
   // the detector's rules the gates were trained behind; none: the detector's own options
   std::optional<DetectorRules> detector_rules;
+  // further readings of each chip, fused with the primary one (empty: none)
+  std::vector<ModelView> views;
 
   std::size_t pixel_count() const {
     return static_cast<std::size_t>(chip_width) * static_cast<std::size_t>(chip_height);
@@ -183,6 +211,9 @@ struct Model {
   std::size_t feature_count() const {
     return static_cast<std::size_t>(feature_width()) * static_cast<std::size_t>(feature_height());
   }
+  // The features of every reading together: a chip unrelated to a class lies about the root of
+  // it away (feature_count() without views).
+  std::size_t fused_feature_count() const { return feature_count() * (1 + views.size()); }
   // Index of the class called `name`, or -1.
   int find_class(std::string_view name) const;
   // Whether any class is mine-like: without one the mine / non-mine decision means nothing, and
@@ -224,6 +255,10 @@ struct TrainOptions {
   int aspect_sectors = 1;        // N >= 1; N > 1 needs every chip's aspect_deg
   bool group_subspaces = false;  // also train pooled "mine" / "non_mine" subspaces
   ChipPreprocess preprocess;     // stored in the model, applied before eq. 9
+  // further readings of every chip (Model::views), each with the model's crop fraction; a chip
+  // constant in one reading (the first included) is left out of that reading's subspaces (and,
+  // calibrating, is as far from them as an unrelated chip, as in classification)
+  std::vector<ChipPreprocess> views;
   // Open-set rejection (ours; the paper always picks a known class). When in (0, 1), each
   // class's reject_distance is the reject_quantile-quantile of its own chips' distances to
   // its subspaces in a reject_folds-fold cross-validation over the training chips (each chip
@@ -267,13 +302,15 @@ Model train_model(std::span<const LabelledChip> chips, const ChipLoader& load,
 
 // The outcome of classifying one chip.
 struct Classification {
-  int class_index = -1;             // the identified class (index into Model::classes), -1 if none
-  float distance = 0.0f;            // its eq. 10 distance
-  int subspace_index = -1;          // its nearest subspace (aspect sector)
-  int runner_up = -1;               // the second-nearest class, -1 when the model has one class
-  float runner_up_distance = 0.0f;  // +infinity when there is no runner-up
+  int class_index = -1;   // the identified class (index into Model::classes), -1 if none
+  float distance = 0.0f;  // its eq. 10 distance
+  // its nearest subspace (aspect sector); -1, aspect unknown, for a chip blank in the first of
+  // several readings whose class has no subspace of the other reading's sector
+  int subspace_index = -1;
+  int runner_up = -1;                 // the second-nearest class, -1 when the model has one class
+  float runner_up_distance = 0.0f;    // +infinity when there is no runner-up
   std::vector<float> class_distance;  // (classes) distance to each class: min over its subspaces
-  std::vector<int> class_subspace;    // (classes) index of that nearest subspace
+  std::vector<int> class_subspace;    // (classes) index of that nearest subspace (or -1)
   // Mine / non-mine (Section 4.1.2).
   bool mine_like = false;              // the decision
   bool mine_like_by_identity = false;  // the identified class's mine_like flag
@@ -314,12 +351,16 @@ class Classifier {
 
  private:
   float class_distance(const ClassModel& c, int* best_subspace);
+  // Normalises the chip's reading by each view into view_x_; a constant one is marked blank.
+  void read_views(ChipView chip);
 
   Model model_;
   PreprocessScratch scratch_;
-  Eigen::VectorXf x_;       // normalised chip (n)
-  Eigen::VectorXf work_n_;  // residual (n)
-  Eigen::VectorXf work_p_;  // projection coefficients (max rank)
+  Eigen::VectorXf x_;                      // normalised chip (n)
+  std::vector<Eigen::VectorXf> view_x_;    // each view's normalised reading (n)
+  std::vector<unsigned char> view_blank_;  // the chip is constant in that view's reading
+  Eigen::VectorXf work_n_;                 // residual (n)
+  Eigen::VectorXf work_p_;                 // projection coefficients (max rank)
   Classification result_;
 };
 

@@ -28,7 +28,12 @@ struct Prepared {
   int width = 0, height = 0;                      // chip size (the first usable chip's)
   std::vector<std::string> names;                 // sorted class names
   std::vector<std::vector<std::size_t>> members;  // columns of each class
-  Eigen::MatrixXf x;        // normalised chips as columns (n x listed; the first `used` filled)
+  Eigen::MatrixXf x;  // normalised chips as columns (n x listed; the first `used` filled)
+  std::vector<unsigned char> blank;  // with views: the chips constant in the first reading
+  // the same for each view's reading (TrainOptions::views), and which chips are constant in it
+  // (blank: left out of that reading's subspaces, as far as an unrelated chip from them)
+  std::vector<Eigen::MatrixXf> view_x;
+  std::vector<std::vector<unsigned char>> view_blank;
   std::size_t used = 0;     // columns filled
   std::vector<int> sector;  // aspect sector of each column
 };
@@ -43,13 +48,30 @@ void report_progress(const TrainOptions& opt, std::string_view stage, std::size_
   if (opt.progress) opt.progress(stage, done, total);
 }
 
-// Why a chip is unusable, or an empty string. Writes its normalised features to `out`.
-std::string load_features(ChipView view, const Prepared& pr, const std::string& first_source,
-                          const TrainOptions& opt, PreprocessScratch& scratch,
-                          std::span<float> out) {
+// Why a chip is unusable, or an empty string. Writes its normalised features to column `col`
+// of pr.x and of each view's matrix (and whether it is blank in that view).
+std::string load_features(ChipView view, Prepared& pr, const std::string& first_source,
+                          const TrainOptions& opt, PreprocessScratch& scratch, Eigen::Index col) {
+  const auto column = [col](Eigen::MatrixXf& x) {
+    return std::span<float>(x.col(col).data(), static_cast<std::size_t>(x.rows()));
+  };
   ChipCheck c = check_chip_size(view, pr.width, pr.height);
-  if (c.ok()) c = normalise_chip(preprocess_into(view, opt.preprocess, scratch), out);
-  if (c.ok()) return {};
+  if (c.ok()) c = normalise_chip(preprocess_into(view, opt.preprocess, scratch), column(pr.x));
+  // with further readings, a chip constant in one of them is blank there (left out of its
+  // subspaces), unusable only when blank in every one (Classifier::classify does the same)
+  const auto at = static_cast<std::size_t>(col);
+  bool usable = c.ok();
+  if (!opt.views.empty() && (c.ok() || c.status == ChipStatus::kConstant)) {
+    pr.blank[at] = c.ok() ? 0 : 1;
+    for (std::size_t v = 0; v < opt.views.size(); ++v) {
+      // the chip passed the size and finite checks: only constant remains
+      const ChipCheck cv =
+          normalise_chip(preprocess_into(view, opt.views[v], scratch), column(pr.view_x[v]));
+      pr.view_blank[v][at] = cv.ok() ? 0 : 1;
+      usable = usable || cv.ok();
+    }
+  }
+  if (usable) return {};
   if (c.status == ChipStatus::kWrongSize && c.width > 0 && c.height > 0) {
     return "is " + std::to_string(c.width) + " x " + std::to_string(c.height) +
            " pixels but the first chip ('" + first_source + "') is " + std::to_string(pr.width) +
@@ -97,10 +119,12 @@ Prepared prepare(std::span<const LabelledChip> chips, const ChipLoader& load,
             static_cast<Eigen::Index>(cropped_size(pr.width, opt.preprocess.crop_fraction) *
                                       cropped_size(pr.height, opt.preprocess.crop_fraction));
         pr.x.resize(n, static_cast<Eigen::Index>(chips.size() - i));
+        pr.view_x.assign(opt.views.size(), Eigen::MatrixXf(pr.x.rows(), pr.x.cols()));
+        pr.blank.assign(static_cast<std::size_t>(pr.x.cols()), 0);
+        pr.view_blank.assign(opt.views.size(), pr.blank);
       }
-      const std::span<float> out(pr.x.col(static_cast<Eigen::Index>(pr.used)).data(),
-                                 static_cast<std::size_t>(pr.x.rows()));
-      reason = load_features(view, pr, first_source, opt, scratch, out);
+      reason =
+          load_features(view, pr, first_source, opt, scratch, static_cast<Eigen::Index>(pr.used));
     } catch (const std::runtime_error& e) {
       reason = e.what();
     }
@@ -230,9 +254,17 @@ Subspace gram_subspace(Eigen::MatrixXd a, int p) {
   return s;
 }
 
-// One subspace per aspect sector that has chips, from the given columns of pr.x.
-ClassModel fit_class(const Prepared& pr, const std::vector<std::size_t>& cols,
-                     const std::string& name, const ClassMetadata& meta, const TrainOptions& opt) {
+// One reading of the training chips: pr.x or a view's, with its blank chips.
+struct Reading {
+  const Eigen::MatrixXf& x;
+  const std::vector<unsigned char>* blank = nullptr;
+  bool is_blank(std::size_t col) const { return blank && (*blank)[col] != 0; }
+};
+
+// One subspace per aspect sector that has chips not blank in the reading, from the given columns.
+ClassModel fit_class(const Reading& reading, const Prepared& pr,
+                     const std::vector<std::size_t>& cols, const std::string& name,
+                     const ClassMetadata& meta, const TrainOptions& opt) {
   ClassModel cm;
   cm.name = name;
   cm.mine_like = meta.mine_like;
@@ -242,10 +274,10 @@ ClassModel fit_class(const Prepared& pr, const std::vector<std::size_t>& cols,
   for (int s = 0; s < opt.aspect_sectors; ++s) {
     std::vector<Eigen::Index> in;
     for (const std::size_t c : cols) {
-      if (pr.sector[c] == s) in.push_back(static_cast<Eigen::Index>(c));
+      if (pr.sector[c] == s && !reading.is_blank(c)) in.push_back(static_cast<Eigen::Index>(c));
     }
     if (in.empty()) continue;
-    Subspace sub = fit_subspace(pr.x, in, opt.p);
+    Subspace sub = fit_subspace(reading.x, in, opt.p);
     sub.aspect_min_deg = s * width_deg;
     sub.aspect_max_deg = s + 1 == opt.aspect_sectors ? 360.0 : (s + 1) * width_deg;
     cm.subspaces.push_back(std::move(sub));
@@ -260,40 +292,86 @@ float quantile_of_sorted(const std::vector<float>& sorted, double q) {
 }
 
 // Cross-validation of one class: its chips' distances to subspaces fitted, fold by fold,
-// without them, sorted. Needs at least two chips per fold's training part; empty when the class
-// is too small.
-std::vector<float> cross_validated_distances(const Prepared& pr,
+// without them, in one reading, in fold order (the same chips in the same order for every
+// reading: a chip blank in the reading, or scored by a fold left without a subspace, is as far
+// as an unrelated chip, sqrt(n)). Needs at least two chips per fold's training part; empty when
+// the class is too small.
+std::vector<float> cross_validated_distances(const Reading& reading, const Prepared& pr,
                                              const std::vector<std::size_t>& cols,
                                              const TrainOptions& opt) {
+  const Eigen::MatrixXf& x_all = reading.x;
+  const auto unrelated = static_cast<float>(std::sqrt(static_cast<double>(x_all.rows())));
   const std::size_t folds =
       std::min<std::size_t>(static_cast<std::size_t>(opt.reject_folds), cols.size());
   if (folds < 2) return {};
   std::vector<float> d;
-  Eigen::VectorXf x(pr.x.rows()), work_n(pr.x.rows()), work_p(std::max(opt.p, 1));
+  Eigen::VectorXf x(x_all.rows()), work_n(x_all.rows()), work_p(std::max(opt.p, 1));
   int sub = -1;
   for (std::size_t f = 0; f < folds; ++f) {
     std::vector<std::size_t> train, held;
     for (std::size_t i = 0; i < cols.size(); ++i)
       (i % folds == f ? held : train).push_back(cols[i]);
     if (train.size() < 2) continue;
-    const ClassModel c = fit_class(pr, train, "fold", {}, opt);
+    const ClassModel c = fit_class(reading, pr, train, "fold", {}, opt);
     for (const std::size_t h : held) {
-      // a fold whose training part left the class no subspace at all: nothing to score against
-      if (c.subspaces.empty()) continue;
-      x = pr.x.col(static_cast<Eigen::Index>(h));
+      if (c.subspaces.empty() || reading.is_blank(h)) {
+        d.push_back(unrelated);
+        continue;
+      }
+      x = x_all.col(static_cast<Eigen::Index>(h));
       d.push_back(nearest_subspace(c, x, work_n, work_p, &sub));
     }
   }
+  return d;
+}
+
+// The class's cross-validated distances fused over the readings (subspace_classifier.h,
+// "Fused readings"), sorted.
+std::vector<float> fused_cross_validated_distances(const Prepared& pr,
+                                                   const std::vector<std::size_t>& cols,
+                                                   const TrainOptions& opt) {
+  std::vector<float> d = cross_validated_distances(Reading{pr.x, &pr.blank}, pr, cols, opt);
+  if (!pr.view_x.empty()) {
+    for (float& v : d)
+      v *= v;
+    for (std::size_t k = 0; k < pr.view_x.size(); ++k) {
+      const std::vector<float> dv =
+          cross_validated_distances(Reading{pr.view_x[k], &pr.view_blank[k]}, pr, cols, opt);
+      for (std::size_t i = 0; i < d.size() && i < dv.size(); ++i)
+        d[i] += dv[i] * dv[i];
+    }
+    for (float& v : d)
+      v = std::sqrt(v);
+  }
   std::sort(d.begin(), d.end());
   return d;
+}
+
+[[noreturn]] void throw_all_blank(const std::string& name, const ChipPreprocess& reading) {
+  throw std::runtime_error("class '" + name + "': every chip is constant in its " +
+                           preprocess_label(reading) +
+                           " reading (nothing to train that reading on)");
 }
 
 void check_options(const TrainOptions& opt) {
   if (opt.p < 1) throw std::runtime_error("p = " + std::to_string(opt.p) + " (must be >= 1)");
   try {
     validate_preprocess(opt.preprocess);
+    for (const ChipPreprocess& v : opt.views)
+      validate_preprocess(v);
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(e.what());
+  }
+  if (opt.views.size() > kMaxModelViews) {
+    throw std::runtime_error(std::to_string(opt.views.size()) + " views (at most " +
+                             std::to_string(kMaxModelViews) + ")");
+  }
+  for (const ChipPreprocess& v : opt.views) {
+    if (v.crop_fraction != opt.preprocess.crop_fraction) {
+      throw std::runtime_error("a view's crop fraction (" + std::to_string(v.crop_fraction) +
+                               ") differs from the model's (" +
+                               std::to_string(opt.preprocess.crop_fraction) + ")");
+    }
   }
   if (!(opt.reject_quantile >= 0.0 && opt.reject_quantile < 1.0)) {
     throw std::runtime_error("reject quantile " + std::to_string(opt.reject_quantile) +
@@ -366,12 +444,15 @@ Model train_model(std::span<const LabelledChip> chips, const ChipLoader& load,
       meta[c] = it->second;
   }
   const bool calibrate = opt.reject_quantile > 0.0 || opt.calibrate;
-  const std::size_t steps = pr.names.size() + (opt.group_subspaces ? 2 : 0);
+  const std::size_t steps =
+      pr.names.size() * (1 + opt.views.size()) + (opt.group_subspaces ? 2 : 0);
   for (std::size_t c = 0; c < pr.names.size(); ++c) {
     report_progress(opt, "fitting subspaces", c, steps);
-    m.classes.push_back(fit_class(pr, pr.members[c], pr.names[c], meta[c], opt));
+    m.classes.push_back(
+        fit_class(Reading{pr.x, &pr.blank}, pr, pr.members[c], pr.names[c], meta[c], opt));
+    if (m.classes.back().subspaces.empty()) throw_all_blank(pr.names[c], opt.preprocess);
     if (calibrate) {
-      const std::vector<float> d = cross_validated_distances(pr, pr.members[c], opt);
+      const std::vector<float> d = fused_cross_validated_distances(pr, pr.members[c], opt);
       if (!d.empty()) {
         m.classes.back().typical_distance = quantile_of_sorted(d, 0.5);
         if (opt.reject_quantile > 0.0)
@@ -394,10 +475,24 @@ Model train_model(std::span<const LabelledChip> chips, const ChipLoader& load,
     }
     std::sort(mine_cols.begin(), mine_cols.end());
     std::sort(other_cols.begin(), other_cols.end());
-    report_progress(opt, "fitting subspaces", steps - 2, steps);
-    m.groups.push_back(fit_class(pr, mine_cols, std::string(kMineGroupName), {true, {}}, opt));
-    report_progress(opt, "fitting subspaces", steps - 1, steps);
-    m.groups.push_back(fit_class(pr, other_cols, std::string(kNonMineGroupName), {}, opt));
+    report_progress(opt, "fitting subspaces", pr.names.size(), steps);
+    m.groups.push_back(fit_class(Reading{pr.x, &pr.blank}, pr, mine_cols,
+                                 std::string(kMineGroupName), {true, {}}, opt));
+    report_progress(opt, "fitting subspaces", pr.names.size() + 1, steps);
+    m.groups.push_back(fit_class(Reading{pr.x, &pr.blank}, pr, other_cols,
+                                 std::string(kNonMineGroupName), {}, opt));
+  }
+  for (std::size_t v = 0; v < opt.views.size(); ++v) {
+    ModelView view;
+    view.preprocess = opt.views[v];
+    for (std::size_t c = 0; c < pr.names.size(); ++c) {
+      report_progress(opt, "fitting subspaces",
+                      steps - (opt.views.size() - v) * pr.names.size() + c, steps);
+      const Reading reading{pr.view_x[v], &pr.view_blank[v]};
+      view.classes.push_back(fit_class(reading, pr, pr.members[c], pr.names[c], meta[c], opt));
+      if (view.classes.back().subspaces.empty()) throw_all_blank(pr.names[c], view.preprocess);
+    }
+    m.views.push_back(std::move(view));
   }
   report_progress(opt, "fitting subspaces", steps, steps);
   validate_model(m);

@@ -23,7 +23,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 // Bumped whenever the recipe or what it depends on (detector, chips, gates) changes in a way the
 // key below does not see.
-constexpr const char* kRecipeVersion = "survey-recipe-2";
+constexpr const char* kRecipeVersion = "survey-recipe-3";
 constexpr const char* kTrainingScenarios[] = {"survey_flat", "survey_ripples", "survey_clutter",
                                               "survey_rocky", "mission_20"};
 
@@ -69,6 +69,14 @@ SurveyModelOptions default_model_options() {
   SurveyModelOptions o;
   o.train.p = 10;
   o.train.aspect_sectors = 8;
+  // the chip's central 1.2 m (of 3 m) read twice, the highlight and the shadow, and the two
+  // readings fused (atr/subspace_classifier.h, "Fused readings"; docs/autonomy.md, "Highlight
+  // and shadow fused")
+  o.train.preprocess.crop_fraction = 0.4;
+  o.train.preprocess.levels = atr::ChipLevels::kAboveSeabed;
+  atr::ChipPreprocess shadow = o.train.preprocess;
+  shadow.levels = atr::ChipLevels::kBelowSeabed;
+  o.train.views = {shadow};
   return o;
 }
 
@@ -84,6 +92,10 @@ std::string default_model_path() {
                 t.onboard.detector.min_height_m, t.detector_rules.min_pings,
                 t.detector_rules.min_along_m);
   key += line;
+  key += atr::preprocess_label(o.train.preprocess);
+  for (const atr::ChipPreprocess& v : o.train.views)
+    key += " + " + atr::preprocess_label(v);
+  key += "\n";
   for (const char* name : kTrainingScenarios)
     key += builtin_yaml(name);
   char file[64];

@@ -10,7 +10,10 @@
 //                      least 15 m apart), 2 surveys each per pass, seeds from 100000 (never a
 //                      seed or layout a mission is reported on)
 //   classifier         p = 10, 8 aspect sectors, a clutter class of at most 400 false alarms
-//                      per survey
+//                      per survey; each chip cropped to its central 40 % (1.2 m of 3 m) and
+//                      read twice, the highlight (levels above_seabed) and the shadow
+//                      (below_seabed), the two readings fused (atr/subspace_classifier.h,
+//                      "Fused readings")
 //   detector           objects from one ping up (TrainingSurveys::detector_rules, recorded in
 //                      the model)
 //   gates              quadratic logistic gates (atr/contact_gate.h): the detection gate keeps

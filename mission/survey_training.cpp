@@ -288,7 +288,13 @@ atr::Model train_survey_model(const TrainingSurveys& t, const SurveyModelOptions
   if (stop && stop()) throw std::runtime_error("training stopped (pass 1 of 2)");
   atr::TrainOptions train = o.train;
   if (train.class_metadata.empty()) train.class_metadata = survey_class_metadata();
-  atr::Model model = atr::train_model(data.chips, train);
+  // a chip cut where the waterfall holds no echo (its centre in the nadir gap or beyond the
+  // range, all 0 once cropped) cannot be normalised: left out, as the onboard classifier
+  // leaves such a chip unclassified
+  train.skip_degenerate = true;
+  atr::TrainReport skipped;
+  atr::Model model = atr::train_model(data.chips, train, &skipped);
+  if (o.on_skipped_chips) o.on_skipped_chips(skipped.skipped);
   model.detector_rules = t.detector_rules;
   if (o.on_gate_rows) o.on_gate_rows(atr::GateStage::kDetection, data.detection);
   model.detection_gate =

@@ -153,6 +153,8 @@ struct SurveyModelOptions {
     o.keep_targets = keep_targets;
     return o;
   }
+  // the pass-1 chips left out of the PCA model (constant: no echo where they were cut)
+  std::function<void(const std::vector<atr::SkippedChip>&)> on_skipped_chips;
   // given: each gate's training rows go here too (for study: `train --surveys --gate-rows`)
   std::function<void(atr::GateStage, const GateRows&)> on_gate_rows;
 };

@@ -6,12 +6,20 @@
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
+#include <utility>
 
 #include "drivers/json/json_writer.h"
 #include "study/sweep.h"
 
 namespace sonarloop::study {
 namespace {
+
+// The aspect sector of the identified class's nearest subspace; [0, 360) when unknown.
+std::pair<double, double> aspect_range(const atr::ClassModel& cls, const atr::Classification& x) {
+  if (x.subspace_index < 0) return {0.0, 360.0};
+  const atr::Subspace& sub = cls.subspaces[static_cast<std::size_t>(x.subspace_index)];
+  return {sub.aspect_min_deg, sub.aspect_max_deg};
+}
 
 // Whether a true class is mine-like: the model's flag for a class it knows, else the
 // simulator's for a target type, else unknown.
@@ -164,7 +172,7 @@ void write_classify_csv(const std::string& path, const atr::Model& m,
     if (r.check.ok()) {
       const auto& x = r.result;
       const auto& cls = m.classes[static_cast<std::size_t>(x.class_index)];
-      const auto& sub = cls.subspaces[static_cast<std::size_t>(x.subspace_index)];
+      const auto [aspect_min, aspect_max] = aspect_range(cls, x);
       out << "," << csv_field(cls.name) << "," << number(x.distance) << ","
           << (x.runner_up >= 0 ? csv_field(m.classes[static_cast<std::size_t>(x.runner_up)].name)
                                : "")
@@ -175,7 +183,7 @@ void write_classify_csv(const std::string& path, const atr::Model& m,
       } else {
         out << ",,";
       }
-      out << "," << number(sub.aspect_min_deg) << "," << number(sub.aspect_max_deg);
+      out << "," << number(aspect_min) << "," << number(aspect_max);
       for (float d : x.class_distance)
         out << "," << number(d);
       out << ",\n";
@@ -213,13 +221,9 @@ void write_classify_json(const std::string& path, const atr::Model& m,
     }
     const auto& x = r.result;
     const auto& cls = m.classes[static_cast<std::size_t>(x.class_index)];
-    const auto& sub = cls.subspaces[static_cast<std::size_t>(x.subspace_index)];
+    const auto [aspect_min, aspect_max] = aspect_range(cls, x);
     w.field("predicted", cls.name).field("distance", static_cast<double>(x.distance), 7);
-    w.key("aspect_range_deg")
-        .begin_array()
-        .value(sub.aspect_min_deg)
-        .value(sub.aspect_max_deg)
-        .end_array();
+    w.key("aspect_range_deg").begin_array().value(aspect_min).value(aspect_max).end_array();
     if (mine_decision) {
       w.field("mine_like", x.mine_like).field("mine_like_by_identity", x.mine_like_by_identity);
       w.field("mine_distance", static_cast<double>(x.mine_distance), 7);

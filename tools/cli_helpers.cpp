@@ -91,6 +91,19 @@ render::RendererKind renderer_option(const Args& args) {
   return *kind;
 }
 
+namespace {
+
+atr::ChipLevels parse_levels(const std::string& option, const std::string& text) {
+  for (auto mode : {atr::ChipLevels::kDb, atr::ChipLevels::kAboveSeabed,
+                    atr::ChipLevels::kBelowSeabed, atr::ChipLevels::kThreeLevel}) {
+    if (text == atr::chip_levels_name(mode)) return mode;
+  }
+  throw UsageError(option + ": '" + text +
+                   "' is not one of db, above_seabed, below_seabed, three_level");
+}
+
+}  // namespace
+
 atr::ChipPreprocess preprocess_options(const Args& args, bool* crop_auto) {
   atr::ChipPreprocess p;
   if (args.get("--crop") == "auto") {
@@ -100,27 +113,55 @@ atr::ChipPreprocess preprocess_options(const Args& args, bool* crop_auto) {
     }
     *crop_auto = true;
   } else {
-    p.crop_fraction = args.get_double("--crop", 0.05, 1.0).value_or(1.0);
+    p.crop_fraction = args.get_double("--crop", 0.05, 1.0).value_or(p.crop_fraction);
   }
-  p.multilook_px = static_cast<int>(args.get_int("--multilook", 1, 63).value_or(1));
+  p.multilook_px = static_cast<int>(args.get_int("--multilook", 1, 63).value_or(p.multilook_px));
   if (p.multilook_px % 2 == 0)
     throw UsageError("--multilook: the window must be odd (1, 3, 5 ...)");
-  if (const auto l = args.get("--levels")) {
-    bool found = false;
-    for (auto mode : {atr::ChipLevels::kDb, atr::ChipLevels::kAboveSeabed,
-                      atr::ChipLevels::kBelowSeabed, atr::ChipLevels::kThreeLevel}) {
-      if (*l == atr::chip_levels_name(mode)) {
-        p.levels = mode;
-        found = true;
-      }
-    }
-    if (!found) {
-      throw UsageError("--levels: '" + *l +
-                       "' is not one of db, above_seabed, below_seabed, three_level");
+  if (const auto l = args.get("--levels")) p.levels = parse_levels("--levels", *l);
+  p.threshold_db = args.get_double("--threshold-db", 0.1, 59.0).value_or(p.threshold_db);
+  return p;
+}
+
+atr::ChipLevels levels_option(const Args& args, atr::ChipLevels fallback) {
+  const auto l = args.get("--levels");
+  return l ? parse_levels("--levels", *l) : fallback;
+}
+
+std::vector<atr::ChipPreprocess> fused_levels_option(const Args& args,
+                                                     const atr::ChipPreprocess& base,
+                                                     const std::vector<atr::ChipLevels>& defaults) {
+  std::vector<atr::ChipLevels> levels = defaults;
+  if (const auto v = args.get("--fuse-levels")) {
+    levels.clear();
+    if (*v != "none") {
+      for (const std::string& name : split_comma_list(*v))
+        levels.push_back(parse_levels("--fuse-levels", name));
     }
   }
-  p.threshold_db = args.get_double("--threshold-db", 0.1, 59.0).value_or(6.0);
-  return p;
+  if (levels.size() > atr::kMaxModelViews) {
+    throw UsageError("--fuse-levels: at most " + std::to_string(atr::kMaxModelViews) +
+                     " further readings");
+  }
+  std::vector<atr::ChipPreprocess> views;
+  for (const atr::ChipLevels l : levels) {
+    if (l == base.levels) {
+      throw UsageError(std::string("--fuse-levels: ") + atr::chip_levels_name(l) +
+                       " is the model's own reading (--levels)");
+    }
+    atr::ChipPreprocess p = base;
+    p.levels = l;
+    views.push_back(p);
+  }
+  return views;
+}
+
+std::string model_readings_label(const atr::Model& m) {
+  std::string s = atr::preprocess_label(m.preprocess);
+  for (const atr::ModelView& v : m.views)
+    s += " + " + atr::preprocess_label(v.preprocess);
+  if (!m.views.empty()) s += " (readings fused)";
+  return s;
 }
 
 std::optional<autonomy::SurveyArea> area_option(const Args& args) {

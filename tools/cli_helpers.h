@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "atr/chip_preprocess.h"
+#include "atr/subspace_classifier.h"
 #include "autonomy/survey.h"
 #include "mission/agent_setup.h"
 #include "sim/render/chip_renderer.h"
@@ -57,5 +58,16 @@ render::RendererKind renderer_option(const Args& args);
 // of atr::adaptive_crop_fraction, per resolution) sets *crop_auto, and is an error when
 // crop_auto is null.
 atr::ChipPreprocess preprocess_options(const Args& args, bool* crop_auto = nullptr);
+// --levels alone (train --surveys), `fallback` when absent.
+atr::ChipLevels levels_option(const Args& args, atr::ChipLevels fallback);
+
+// --fuse-levels L[,L...] (train): further readings of every chip (atr::Model views), each `base`
+// with another levels mode; "none" for none. `defaults` when the option is absent.
+std::vector<atr::ChipPreprocess> fused_levels_option(
+    const Args& args, const atr::ChipPreprocess& base,
+    const std::vector<atr::ChipLevels>& defaults = {});
+
+// "above_seabed + below_seabed (fused)" or the primary reading's label alone.
+std::string model_readings_label(const atr::Model& m);
 
 }  // namespace sonarloop::tools

@@ -12,6 +12,7 @@
 
 #include "atr/model_file.h"
 #include "drivers/image/png.h"
+#include "mission/default_model.h"
 #include "mission/survey_training.h"
 #include "sim/targets/target_type.h"
 #include "tools/args.h"
@@ -151,6 +152,9 @@ int run_survey_dataset(const std::vector<std::string>& argv) {
 int run_survey_train(const std::vector<std::string>& argv) {
   const Args args(argv, survey_options({{"--p"},
                                         {"--aspect-sectors"},
+                                        {"--crop"},
+                                        {"--levels"},
+                                        {"--fuse-levels"},
                                         {"--keep-targets"},
                                         {"--false-per-target"},
                                         {"--gate-rows"}}));
@@ -160,9 +164,20 @@ int run_survey_train(const std::vector<std::string>& argv) {
   const auto out = args.get("--out");
   if (!out) throw UsageError("--out MODEL is required");
   const mission::TrainingSurveys t = training_surveys_of(args);
-  mission::SurveyModelOptions o;
-  o.train.p = static_cast<int>(args.get_int("--p", 1, 4096).value_or(10));
-  o.train.aspect_sectors = static_cast<int>(args.get_int("--aspect-sectors", 1, 360).value_or(8));
+  // the default model's recipe, with what the command line changes
+  mission::SurveyModelOptions o = mission::default_model_options();
+  o.train.p = static_cast<int>(args.get_int("--p", 1, 4096).value_or(o.train.p));
+  o.train.aspect_sectors =
+      static_cast<int>(args.get_int("--aspect-sectors", 1, 360).value_or(o.train.aspect_sectors));
+  {
+    std::vector<atr::ChipLevels> fused;
+    for (const atr::ChipPreprocess& v : o.train.views)
+      fused.push_back(v.levels);
+    o.train.preprocess.levels = levels_option(args, o.train.preprocess.levels);
+    o.train.preprocess.crop_fraction =
+        args.get_double("--crop", 0.05, 1.0).value_or(o.train.preprocess.crop_fraction);
+    o.train.views = fused_levels_option(args, o.train.preprocess, fused);
+  }
   if (const auto keep = args.get_double("--keep-targets", 0.5, 1.0)) {
     o.classification_gate.keep_targets = *keep;
     o.detection_gate.keep_targets = std::max(*keep, o.detection_gate.keep_targets);
@@ -179,6 +194,11 @@ int run_survey_train(const std::vector<std::string>& argv) {
           g.own_threshold, g.budget_threshold,
           g.served ? "" : ": keeping its targets would cost too many false detections");
     }
+  };
+  o.on_skipped_chips = [](const std::vector<atr::SkippedChip>& s) {
+    if (!s.empty())
+      std::printf("%zu training chips left out (constant: no echo where they were cut)\n",
+                  s.size());
   };
   if (const auto prefix = args.get("--gate-rows")) {
     o.on_gate_rows = [prefix](atr::GateStage s, const mission::GateRows& rows) {

@@ -90,6 +90,7 @@ int run_train(const std::vector<std::string>& argv) {
                          {"--crop"},
                          {"--multilook"},
                          {"--levels"},
+                         {"--fuse-levels"},
                          {"--threshold-db"},
                          {"--reject-quantile"}});
   if (args.positionals().size() != 1) throw UsageError("expected one CHIPS_DIR");
@@ -101,6 +102,7 @@ int run_train(const std::vector<std::string>& argv) {
   opt.group_subspaces = args.has("--group-subspaces");
   opt.skip_degenerate = args.has("--skip-bad-chips");
   opt.preprocess = preprocess_options(args);
+  opt.views = fused_levels_option(args, opt.preprocess);
   opt.reject_quantile = args.get_double("--reject-quantile", 0.0, 0.9999).value_or(0.0);
   const std::optional<study::ChipSize> size = chip_size_option(args);
 
@@ -143,8 +145,7 @@ int run_train(const std::vector<std::string>& argv) {
   std::printf("p = %d, %d aspect sector%s%s; pre-processing: %s (features %d x %d)\n", model.p,
               model.aspect_sectors, model.aspect_sectors == 1 ? "" : "s",
               model.groups.empty() ? "" : ", with mine / non_mine group subspaces",
-              atr::preprocess_label(model.preprocess).c_str(), model.feature_width(),
-              model.feature_height());
+              model_readings_label(model).c_str(), model.feature_width(), model.feature_height());
   for (const auto& c : model.classes)
     print_class(c, "class");
   for (const auto& g : model.groups)
@@ -215,6 +216,12 @@ default none, as the paper; measured by `sonarloop sweep --experiment ablation`)
                        median level), below_seabed (only what is darker), three_level
                        (+1 / 0 / -1 against the median +- --threshold-db)
   --threshold-db T     three_level threshold in dB (default 6)
+  --fuse-levels L[,L]  also read every chip with these levels modes (the same crop and
+                       multilook) and fuse: each class's distance is the root of its squared
+                       distances summed over the readings (--levels above_seabed --fuse-levels
+                       below_seabed: highlight and shadow, atr/subspace_classifier.h "Fused
+                       readings"); a chip constant in a reading (no pixel below
+                       the seabed) is left out of that reading's subspaces
 
 open-set rejection (ours; default off, as the paper):
   --reject-quantile Q  calibrate, per class, the distance beyond which a chip is reported
@@ -251,6 +258,9 @@ that rule: onboard detects as the gates were trained. Training seeds start at --
                          keeps 0.99, or F if larger, where that costs at most 10 false
                          detections per target)
   --p N, --aspect-sectors N  as above (defaults 10 and 8)
+  --levels L, --fuse-levels L[,L]  as above (defaults above_seabed and below_seabed: the
+                         highlight and the shadow fused; --fuse-levels none for one reading)
+  --crop F               as above (default 0.4: the chip's central 1.2 m)
   --gate-rows PREFIX     also write each gate's training rows (features, label, target) to
                          PREFIX_detection.csv and PREFIX_classification.csv
   --seed S, --threads N

@@ -76,7 +76,8 @@ TEST_CASE("classify allocations: classify() allocates nothing once set up") {
 }
 
 TEST_CASE("classify allocations: a pre-processing model allocates nothing either") {
-  // crop, multilook and three levels: the classifier's scratch is sized at construction
+  // crop, multilook, levels and a second, fused reading: the classifier's scratch and the
+  // readings' vectors are sized at construction
   const auto lc = testing::make_linear_classes(3, 40, 40, 3, 6);
   const std::vector<std::string> names = {"cylinder", "manta", "rock"};
   Rng rng(10, RngStream::kTraining, 6);
@@ -92,8 +93,10 @@ TEST_CASE("classify allocations: a pre-processing model allocates nothing either
   TrainOptions opt;
   opt.p = 10;
   opt.preprocess = ChipPreprocess{0.5, 3, ChipLevels::kAboveSeabed, 6.0};
+  opt.views = {ChipPreprocess{0.5, 1, ChipLevels::kBelowSeabed, 6.0}};
   Classifier clf(train_model(train, opt));
   REQUIRE(clf.model().feature_count() == 400);
+  REQUIRE(clf.model().views.size() == 1);
   std::vector<Chip> probes;
   for (int c = 0; c < 3; ++c)
     probes.push_back(testing::sample_linear(lc, c, rng, 0.1, 3.0, 100.0));

@@ -93,7 +93,14 @@ void fix_crc(std::vector<std::uint8_t>& b) {
 // flags byte); version 1 neither the pre-processing record nor the reject and typical distances.
 std::vector<std::uint8_t> downgrade(const Model& m, int version) {
   REQUIRE_FALSE(m.detector_rules);
-  auto v5 = encode_model(m);
+  REQUIRE(m.views.empty());
+  const auto v6 = encode_model(m);
+  // version 5: without the view count (0) before the CRC
+  std::vector<std::uint8_t> v5(v6.begin(), v6.end() - 8);
+  v5[6] = 5;
+  v5.insert(v5.end(), 4, 0);
+  fix_crc(v5);
+  if (version == 5) return v5;
   // version 4: without the detector rules record (4 bytes for none) before the CRC
   std::vector<std::uint8_t> v4(v5.begin(), v5.end() - 8);
   v4[6] = 4;
@@ -197,10 +204,11 @@ TEST_CASE("model file: the byte layout is the documented one") {
   std::memcpy(&h, b.data() + 82, 8);  // height_m (little-endian host)
   CHECK(h == 0.4);
   // size: header + pre-processing + per class (name record + subspaces) + gate count + detector
-  // rules (none: the flag and 3 reserved bytes) + crc
-  CHECK(le32(b, b.size() - 12) == 0);  // no gates
-  CHECK(le32(b, b.size() - 8) == 0);   // no detector rules
-  std::size_t expect = 36 + 24 + 4 + 4 + 4;
+  // rules (none: the flag and 3 reserved bytes) + view count + crc
+  CHECK(le32(b, b.size() - 16) == 0);  // no gates
+  CHECK(le32(b, b.size() - 12) == 0);  // no detector rules
+  CHECK(le32(b, b.size() - 8) == 0);   // no views
+  std::size_t expect = 36 + 24 + 4 + 4 + 4 + 4;
   for (const auto& c : m.classes) {
     expect += 2 + c.name.size() + 2 + 4 + 8 + 8;
     for (const auto& s : c.subspaces) {
@@ -227,9 +235,9 @@ TEST_CASE("model file: bad magic, version, truncation, trailing bytes and corrup
                     Catch::Contains("bad magic"));
 
   b = good;
-  b[6] = 6;
-  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("unsupported format version 6") &&
-                                              Catch::Contains("reads versions 1 to 5"));
+  b[6] = 7;
+  CHECK_THROWS_WITH(decode_model(b, "m"), Catch::Contains("unsupported format version 7") &&
+                                              Catch::Contains("reads versions 1 to 6"));
   // class metadata: an unknown flag, a height out of range, a height said unknown but not 0
   const auto single = encode_model(trained(false));  // first class cuboid, height at 82
   b = single;
@@ -449,7 +457,7 @@ TEST_CASE("model file: version 5 keeps the detector rules; version 4 loads witho
   m.detector_rules = DetectorRules{1, 0.0};
   std::uint16_t version = 0;
   const Model back = decode_model(encode_model(m), "v5", &version);
-  CHECK(version == 5);
+  CHECK(version == kModelFileVersion);
   REQUIRE(back.detector_rules);
   CHECK(*back.detector_rules == DetectorRules{1, 0.0});
   m.detector_rules = DetectorRules{3, 0.25};
@@ -468,12 +476,76 @@ TEST_CASE("model file: version 5 keeps the detector rules; version 4 loads witho
   CHECK_THROWS_WITH(encode_model(bad), Catch::Contains("min_pings"));
   bad.detector_rules = DetectorRules{2, -1.0};
   CHECK_THROWS_WITH(encode_model(bad), Catch::Contains("min_along_m"));
-  auto bytes = encode_model(m);  // rules {3, 0.25}: the u32 starts 12 bytes before the end
-  bytes[bytes.size() - 16] = 0;
+  // rules {3, 0.25}: the u32 starts 20 bytes before the end (f64, the view count, the CRC)
+  auto bytes = encode_model(m);
+  bytes[bytes.size() - 20] = 0;
   fix_crc(bytes);
   CHECK_THROWS_WITH(decode_model(bytes, "zero"), Catch::Contains("min_pings 0"));
   bytes = encode_model(m);
-  bytes[bytes.size() - 20] = 2;  // the flag byte
+  bytes[bytes.size() - 24] = 2;  // the flag byte
   fix_crc(bytes);
   CHECK_THROWS_WITH(decode_model(bytes, "flag"), Catch::Contains("detector rules flag 2"));
+}
+
+TEST_CASE("model file: version 6 keeps the fused readings; version 5 loads without them") {
+  TrainOptions opt;
+  opt.p = 5;
+  opt.preprocess.levels = ChipLevels::kAboveSeabed;
+  ChipPreprocess shadow = opt.preprocess;
+  shadow.levels = ChipLevels::kBelowSeabed;
+  opt.views = {shadow};
+  const Model m = train_model(chips(15, 1, false), opt);
+  REQUIRE(m.views.size() == 1);
+  std::uint16_t version = 0;
+  const Model back = decode_model(encode_model(m), "v6", &version);
+  CHECK(version == 6);
+  REQUIRE(back.views.size() == 1);
+  CHECK(back.views[0].preprocess == shadow);
+  expect_same(m, back);
+  Model primary = m, view = m;
+  primary.views.clear();
+  view.views.clear();
+  view.preprocess = shadow;
+  view.classes = m.views[0].classes;
+  Model back_view = back;
+  back_view.views.clear();
+  back_view.preprocess = shadow;
+  back_view.classes = back.views[0].classes;
+  expect_same(view, back_view);
+  // the same fused distances, bit for bit
+  Classifier a(m), b(back);
+  for (const LabelledChip& c : chips(3, 9, false)) {
+    REQUIRE(a.classify(c.chip.view()).ok());
+    REQUIRE(b.classify(c.chip.view()).ok());
+    CHECK(a.result().class_distance == b.result().class_distance);
+  }
+  // a model without views writes a view count of 0, which version 5 lacks
+  const Model v5 = decode_model(downgrade(primary, 5), "v5", &version);
+  CHECK(version == 5);
+  CHECK(v5.views.empty());
+  expect_same(primary, v5);
+  // refused: a view's crop other than the model's, a view of another class count, a view count
+  // beyond the limit
+  Model bad = m;
+  bad.views[0].preprocess.crop_fraction = 0.5;
+  CHECK_THROWS_WITH(encode_model(bad), Catch::Contains("crop fraction"));
+  bad = m;
+  bad.views[0].classes.pop_back();
+  CHECK_THROWS_WITH(encode_model(bad), Catch::Contains("classes"));
+  bad = m;
+  bad.views[0].classes[0].typical_distance = 3.0f;
+  CHECK_THROWS_WITH(encode_model(bad), Catch::Contains("typical distance"));
+  auto bytes = encode_model(m);
+  // the view count follows the detector rules record (4 bytes for none), after the gate count
+  std::size_t at = 36 + 24;
+  for (const auto& c : m.classes) {
+    at += 2 + c.name.size() + 2 + 4 + 8 + 8;
+    for (const auto& s : c.subspaces)
+      at += 16 + 8 + 8 * s.rank() + 4 * m.feature_count() * (1 + s.rank());
+  }
+  at += 4 + 4;
+  REQUIRE(le32(bytes, at) == 1);
+  put_le32(bytes, at, 4);
+  fix_crc(bytes);
+  CHECK_THROWS_WITH(decode_model(bytes, "views"), Catch::Contains("view count 4"));
 }

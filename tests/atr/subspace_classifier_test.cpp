@@ -3,6 +3,7 @@
 // are rejected, multi-aspect subspaces help where one subspace fails, and the mine / non-mine
 // decision (Section 4.1.2).
 #include <Eigen/SVD>
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
@@ -463,4 +464,74 @@ TEST_CASE("subspace classifier: open-set rejection calibrated by cross-validatio
   bad.reject_quantile = 0.9;
   bad.reject_folds = 1;
   CHECK_THROWS_WITH(train_model(train, bad), Catch::Contains("reject folds"));
+}
+
+TEST_CASE("subspace classifier: fused readings add each reading's squared eq. 10 distances") {
+  const LinearClasses lc = testing::make_linear_classes(4, 10, 8, 3, 31);
+  const std::vector<LabelledChip> train = linear_set(lc, 12, 5, 0.3);
+  TrainOptions highlight;
+  highlight.p = 4;
+  highlight.preprocess.levels = ChipLevels::kAboveSeabed;
+  TrainOptions shadow = highlight;
+  shadow.preprocess.levels = ChipLevels::kBelowSeabed;
+  TrainOptions fused = highlight;
+  fused.views = {shadow.preprocess};
+  Classifier a(train_model(train, highlight)), b(train_model(train, shadow));
+  const Model fm = train_model(train, fused);
+  REQUIRE(fm.views.size() == 1);
+  CHECK(fm.fused_feature_count() == 2 * fm.feature_count());
+  Classifier f(fm);
+  int agree_with_sum = 0;
+  for (LabelledChip c : linear_set(lc, 5, 8, 0.3)) {
+    REQUIRE(a.classify(c.chip.view()).ok());
+    REQUIRE(b.classify(c.chip.view()).ok());
+    REQUIRE(f.classify(c.chip.view()).ok());
+    for (std::size_t k = 0; k < kNames.size(); ++k) {
+      const double da = a.result().class_distance[k], db = b.result().class_distance[k];
+      CHECK(f.result().class_distance[k] == Approx(std::sqrt(da * da + db * db)).epsilon(1e-5));
+    }
+    // the identified class is the smallest fused distance
+    const auto& d = f.result().class_distance;
+    agree_with_sum += f.result().class_index ==
+                      static_cast<int>(std::min_element(d.begin(), d.end()) - d.begin());
+
+    // a chip with nothing below its median: blank in the shadow reading, which then adds n to
+    // every class's square (as far as an unrelated chip), leaving the ranking to the highlight
+    const std::vector<float> original = c.chip.pixels;
+    std::vector<float> sorted = c.chip.pixels;
+    std::sort(sorted.begin(), sorted.end());
+    const float floor = sorted[sorted.size() * 6 / 10];
+    for (float& p : c.chip.pixels)
+      p = std::max(p, floor);
+    REQUIRE(a.classify(c.chip.view()).ok());
+    REQUIRE(f.classify(c.chip.view()).ok());
+    const double n = static_cast<double>(fm.feature_count());
+    for (std::size_t k = 0; k < kNames.size(); ++k) {
+      const double da = a.result().class_distance[k];
+      CHECK(f.result().class_distance[k] == Approx(std::sqrt(da * da + n)).epsilon(1e-5));
+    }
+    CHECK(f.result().class_index == a.result().class_index);
+
+    // nothing above the median: blank in the first (highlight) reading, the shadow decides
+    c.chip.pixels = original;
+    for (float& p : c.chip.pixels)
+      p = std::min(p, sorted[sorted.size() * 4 / 10]);
+    REQUIRE(b.classify(c.chip.view()).ok());
+    REQUIRE(f.classify(c.chip.view()).ok());
+    for (std::size_t k = 0; k < kNames.size(); ++k) {
+      const double db = b.result().class_distance[k];
+      CHECK(f.result().class_distance[k] == Approx(std::sqrt(n + db * db)).epsilon(1e-5));
+    }
+    CHECK(f.result().class_index == b.result().class_index);
+    CHECK(f.result().subspace_index == 0);  // one aspect sector: the class's only subspace
+
+    // blank in both readings: a constant chip, rejected
+    std::fill(c.chip.pixels.begin(), c.chip.pixels.end(), 7.0f);
+    CHECK(f.classify(c.chip.view()).status == ChipStatus::kConstant);
+  }
+  CHECK(agree_with_sum == 20);
+  // a view's crop must be the model's
+  TrainOptions bad = fused;
+  bad.views[0].crop_fraction = 0.5;
+  CHECK_THROWS_WITH(train_model(train, bad), Catch::Contains("crop fraction"));
 }

@@ -185,6 +185,21 @@ TEST_CASE("train/classify cli: train on PNG chips, classify a labelled test fold
   CHECK_THAT(slurp(dir.file("crop.json")), Catch::Contains("\"open_set_score\":"));
   // the model without open-set rejection reports no such field
   CHECK_THAT(slurp(json), !Catch::Contains("open_set_score"));
+
+  // two readings fused: stored in the file, the shadow reading's subspaces beside the classes'
+  REQUIRE(run_capturing(dir, "train " + train.string() + " --out " + dir.file("fused.slpca") +
+                                 " --p 5 --levels above_seabed --fuse-levels below_seabed") == 0);
+  CHECK_THAT(slurp(dir.file("stdout.txt")),
+             Catch::Contains("above_seabed + below_seabed (readings fused)"));
+  const atr::Model m4 = atr::load_model(dir.file("fused.slpca"));
+  REQUIRE(m4.views.size() == 1);
+  CHECK(m4.views[0].preprocess.levels == atr::ChipLevels::kBelowSeabed);
+  CHECK(m4.views[0].classes.size() == m4.classes.size());
+  REQUIRE(run_capturing(
+              dir, "classify " + dir.file("fused.slpca") + " " + test.string() + " --quiet") == 0);
+  CHECK(run_capturing(dir, "train " + train.string() + " --out " + dir.file("m5") +
+                               " --fuse-levels bright") == 2);
+  CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("--fuse-levels: 'bright'"));
 }
 
 TEST_CASE("train/classify cli: usage and input errors") {

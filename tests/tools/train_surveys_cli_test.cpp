@@ -61,6 +61,11 @@ TEST_CASE("train --surveys: a clutter class and both gates; mission reports the 
   // the gates were trained behind a detector of objects from one ping up, and the model says so
   REQUIRE(m.detector_rules);
   CHECK(*m.detector_rules == atr::DetectorRules{1, 0.0});
+  // the recipe's readings: the chip's centre, its highlight, and its shadow fused with it
+  CHECK(m.preprocess.crop_fraction == 0.4);
+  CHECK(m.preprocess.levels == atr::ChipLevels::kAboveSeabed);
+  REQUIRE(m.views.size() == 1);
+  CHECK(m.views[0].preprocess.levels == atr::ChipLevels::kBelowSeabed);
   // a mission with it: the contacts carry the gate's probability, the gate's FROC is written
   REQUIRE(run_logged(dir,
                      "mission " + kSmallSurvey + " --model " + model +
@@ -119,6 +124,12 @@ TEST_CASE("train --surveys: usage errors") {
   CHECK(run_logged(dir, "train --surveys " + kSmallSurvey + " --classes manta,dragon --out m",
                    "d") == 2);
   CHECK(slurp(dir.file("d.err")).find("dragon") != std::string::npos);
+  // the model's own reading cannot also be a fused one
+  CHECK(run_logged(dir,
+                   "train --surveys " + kSmallSurvey + " --out " + dir.file("m") +
+                       " --levels db --fuse-levels db",
+                   "e") == 2);
+  CHECK(slurp(dir.file("e.err")).find("the model's own reading") != std::string::npos);
 }
 
 TEST_CASE("the default model: its cached file is what a mission without --model uses") {

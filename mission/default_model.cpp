@@ -120,7 +120,7 @@ std::string ensure_default_model(bool quiet, const StopFn& stop) {
   }
   std::fprintf(stderr,
                "default model: not cached yet: training it once from the documented recipe "
-               "(docs/autonomy.md; about 7 minutes on 2 cores) into %s\n",
+               "(docs/autonomy.md; about 6 minutes on 2 cores) into %s\n",
                path.c_str());
   const auto t0 = std::chrono::steady_clock::now();
   const atr::Model model = train_survey_model(

@@ -404,7 +404,7 @@ options:
   --model MODEL          the onboard consumer's model (`sonarloop train`); default (or none
                          given): the default model, trained once from the documented recipe on
                          the built-in survey scenarios and cached (mission/default_model.h; about
-                         7 minutes on 2 cores the first time)
+                         6 minutes on 2 cores the first time)
   --seeds N              lock-step: fly N seeds (default 1), from --seed S (default: the
                          scenario's seed)
   --layout L             lock-step: scenario (the scenario's targets, default) or random (the

@@ -265,7 +265,7 @@ that rule: onboard detects as the gates were trained. Training seeds start at --
                          PREFIX_detection.csv and PREFIX_classification.csv
   --seed S, --threads N
 The default model of `sonarloop mission` is this with its defaults on the five built-in
-scenarios (mission/default_model.h): about 7 minutes on 2 cores, cached. `train --default`
+scenarios (mission/default_model.h): about 6 minutes on 2 cores, cached. `train --default`
 builds it now (if it is not cached yet) and prints its path; `--path` prints the path only.
 
 examples:

@@ -174,6 +174,8 @@ int run_survey_train(const std::vector<std::string>& argv) {
     for (const atr::ChipPreprocess& v : o.train.views)
       fused.push_back(v.levels);
     o.train.preprocess.levels = levels_option(args, o.train.preprocess.levels);
+    // --levels alone naming the recipe's other reading: that reading alone
+    if (!args.get("--fuse-levels")) std::erase(fused, o.train.preprocess.levels);
     o.train.preprocess.crop_fraction =
         args.get_double("--crop", 0.05, 1.0).value_or(o.train.preprocess.crop_fraction);
     o.train.views = fused_levels_option(args, o.train.preprocess, fused);

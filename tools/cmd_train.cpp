@@ -259,7 +259,8 @@ that rule: onboard detects as the gates were trained. Training seeds start at --
                          detections per target)
   --p N, --aspect-sectors N  as above (defaults 10 and 8)
   --levels L, --fuse-levels L[,L]  as above (defaults above_seabed and below_seabed: the
-                         highlight and the shadow fused; --fuse-levels none for one reading)
+                         highlight and the shadow fused; --fuse-levels none for one reading,
+                         as is --levels below_seabed alone)
   --crop F               as above (default 0.4: the chip's central 1.2 m)
   --gate-rows PREFIX     also write each gate's training rows (features, label, target) to
                          PREFIX_detection.csv and PREFIX_classification.csv

@@ -268,6 +268,12 @@ Classifier::Classifier(Model model) : model_(std::move(model)) {
   result_.class_subspace.assign(model_.classes.size(), -1);
 }
 
+ChipCheck Classifier::with_expected_size(ChipCheck check) const {
+  check.expected_width = model_.chip_width;
+  check.expected_height = model_.chip_height;
+  return check;
+}
+
 float Classifier::class_distance(const ClassModel& c, int* best_subspace) {
   return nearest_subspace(c, x_, work_n_, work_p_, best_subspace);
 }
@@ -296,18 +302,11 @@ ChipCheck Classifier::classify(ChipView chip) {
   // with further readings, a chip constant in the first one is blank there (a chip without a
   // highlight, read with a shadow reading beside); a chip blank in every reading is unusable
   const bool blank = !norm.ok() && norm.status == ChipStatus::kConstant && !model_.views.empty();
+  if (!norm.ok() && !blank) return with_expected_size(norm);
   read_views(chip);
   if (blank &&
-      std::all_of(view_blank_.begin(), view_blank_.end(), [](unsigned char b) { return b != 0; })) {
-    check = norm;
-  } else if (!norm.ok() && !blank) {
-    check = norm;
-  }
-  if (!check.ok()) {
-    check.expected_width = model_.chip_width;
-    check.expected_height = model_.chip_height;
-    return check;
-  }
+      std::all_of(view_blank_.begin(), view_blank_.end(), [](unsigned char b) { return b != 0; }))
+    return with_expected_size(norm);
   // a blank reading is as far from every class as an unrelated chip: n
   const auto blank_square = static_cast<float>(model_.feature_count());
 

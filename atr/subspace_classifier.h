@@ -351,6 +351,8 @@ class Classifier {
 
  private:
   float class_distance(const ClassModel& c, int* best_subspace);
+  // A failed check of a chip, with the model's chip size as the expected one.
+  ChipCheck with_expected_size(ChipCheck check) const;
   // Normalises the chip's reading by each view into view_x_; a constant one is marked blank.
   void read_views(ChipView chip);
 

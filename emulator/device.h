@@ -12,8 +12,8 @@
 // ExternalPoseInput (external_pose.h) by the render workers and the publisher alike.
 //
 // A layer above the emulator adds its own with Emulator::add_device: the in-process onboard
-// consumer of `run --classify` and the live view of `run --web` (tools/), which this layer
-// cannot build.
+// consumer of `run --classify` (mission/onboard_device.h) and the live view of `run --web`
+// (web/emulator_device.h), which this layer cannot build.
 //
 // Timing. A device on the wire (on_wire()) gets each event first; the publisher measures a
 // ping's lateness once they have all sent it, then hands it to the others (the recorder), whose

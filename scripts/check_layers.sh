@@ -13,7 +13,8 @@
 #   mission  <- mission, autonomy, study, emulator, atr, config, sim, drivers, common (the closed
 #               loop in lock-step, survey scoring, training on surveys and the default model from
 #               the built-in scenarios: offline, where the simulator meets the onboard side)
-#   web      <- web, atr, drivers, common (the live view: event hub, page, HTTP server)
+#   web      <- web, emulator, atr, drivers, common (the live view: event hub, page, HTTP
+#               server, and the device that feeds it from the emulator)
 #   ranks    <- ranks, study, atr, sim, drivers, common (chips and the resolution study's run over
 #               the ranks of an MPI job)
 #   products <- products, sim, drivers, common (what scene and render write: images, truth)
@@ -44,7 +45,7 @@ declare -A allowed=(
   [study]="study atr sim drivers common units"
   [autonomy]="autonomy atr drivers common units"
   [mission]="mission autonomy study emulator atr config sim drivers common units"
-  [web]="web atr drivers common units"
+  [web]="web emulator atr drivers common units"
   [ranks]="ranks study atr sim drivers common units"
   [products]="products sim drivers common units"
   [bench]="bench config sim drivers common units"

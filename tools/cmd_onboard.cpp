@@ -24,7 +24,8 @@
 #include "tools/commands.h"
 #include "tools/output_file.h"
 #include "tools/scenario_source.h"
-#include "tools/web_view.h"
+#include "tools/web_option.h"
+#include "web/web_view.h"
 
 namespace sonarloop::tools {
 using atr::ContactWriter;

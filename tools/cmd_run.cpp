@@ -24,7 +24,8 @@
 #include "tools/commands.h"
 #include "tools/output_file.h"
 #include "tools/scenario_source.h"
-#include "tools/web_view.h"
+#include "tools/web_option.h"
+#include "web/emulator_device.h"
 
 namespace sonarloop::tools {
 using atr::InProcessOnboard;
@@ -33,7 +34,9 @@ using mission::OnboardDevice;
 using web::kWebStatsEveryS;
 using web::open_web_view;
 using web::print_web_summary;
+using web::web_stats_of;
 using web::WebView;
+using web::WebViewDevice;
 namespace {
 
 // A stop request (SIGINT/SIGTERM) during start-up: nothing was sent or recorded.
@@ -233,7 +236,8 @@ int run_run(const std::vector<std::string>& argv) {
                    onboard->contacts_destination().c_str());
     }
   }
-  if (web) emu.add_device(std::make_unique<WebViewDevice>(*web));  // after the consumer, as before
+  if (web)
+    emu.add_device(std::make_unique<WebViewDevice>(web->hub));  // after the consumer, as before
   if (!quiet) print_run_setup(emu, o);
   emulator::RunStats stats;
   try {

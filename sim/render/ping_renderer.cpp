@@ -11,6 +11,8 @@
 
 namespace sonarloop::render {
 
+RendererScratch::~RendererScratch() = default;
+
 PingScratch::PingScratch() = default;
 PingScratch::~PingScratch() = default;
 PingScratch::PingScratch(PingScratch&&) noexcept = default;

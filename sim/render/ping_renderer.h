@@ -33,7 +33,6 @@
 #include "sim/render/sonar.h"
 #include "sim/scene/embree_handles.h"
 #include "sim/scene/scene.h"
-#include "sim/seabed/height_sampler.h"
 
 namespace sonarloop::render {
 
@@ -99,16 +98,6 @@ struct RayMeta {
   std::uint8_t side = 0;          // 0 port, 1 starboard
 };
 
-// The heightfield march of one beam plane (profile renderer): per sample, what the horizon and
-// target tests need. Sized once, reused.
-struct ProfileLineScratch {
-  std::vector<float> edge_tan;  // target rays: in-plane tan(depression) of each tube edge
-  std::vector<float> ray_tan;   // target rays: in-plane tan(depression) of the ray
-  std::vector<float> ray_s;     // target rays: in-plane ground distance of the hit
-  std::vector<float> hit_r;     // target rays: hit range (inf: no hit)
-  std::vector<float> horizon;   // running minimum tan(depression) after each march sample
-};
-
 // What the per-bin labels are made of (bin_labels.h), per side, per bin; sized only when
 // RenderOptions::labels is set.
 struct BinLabelScratch {
@@ -117,7 +106,18 @@ struct BinLabelScratch {
   std::vector<std::uint32_t> seabed_hidden[2];  // seabed samples a target hides from it
 };
 
-// Buffers of one rendering thread, sized on first use (no allocation per ping afterwards).
+// A renderer's own per-thread buffers, besides the shared ones of PingScratch: one type per
+// renderer (the profile renderer's is ProfileScratch, in profile_line.h; the ray tracer needs
+// none), made by the renderer in the scratch it is given, on first use.
+class RendererScratch {
+ public:
+  virtual ~RendererScratch();
+};
+
+// Buffers of one rendering thread, sized on first use (no allocation per ping afterwards): what
+// both renderers use (the rays, their hits and what shading needs, the accumulated echoes, the
+// truth and the labels), and the renderer's own (`own`). One PingScratch serves either
+// renderer; given to another, it makes that one's own buffers anew.
 // Made, moved and destroyed in ping_renderer.cpp, where Embree's RTCRayHit is complete (this
 // header does not include Embree: sim/scene/embree_handles.h).
 struct PingScratch {
@@ -132,10 +132,17 @@ struct PingScratch {
   std::vector<RayMeta> meta;
   std::vector<TargetTrace> traces;
   BinLabelScratch labels;
-  ProfileLineScratch line;
-  seabed::HeightSampler heights;  // profile: heightmap tiles of the scene being rendered
-  std::uint64_t rays_cast = 0;    // rays intersected in the last ping (incl. truth rays)
-  std::uint64_t samples = 0;      // profile: heightfield samples marched in the last ping
+  std::uint64_t rays_cast = 0;           // rays intersected in the last ping (incl. truth rays)
+  std::uint64_t samples = 0;             // profile: heightfield samples marched in the last ping
+  std::unique_ptr<RendererScratch> own;  // the renderer's own buffers (made by it)
+
+  // The renderer's own buffers as type T, made (replacing another renderer's) if need be.
+  template <class T>
+  T& own_as() {
+    if (auto* p = dynamic_cast<T*>(own.get())) return *p;
+    own = std::make_unique<T>();
+    return static_cast<T&>(*own);
+  }
 };
 
 // Fidelity knobs ("enough for the pixel size and no more", docs/rendering.md).

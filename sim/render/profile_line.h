@@ -1,9 +1,28 @@
 #pragma once
 // ProfileRenderer's beam plane, shared by its translation units (profile_renderer.cpp: the
 // march; profile_target_rays.cpp: the target rays). Not part of the renderer's interface.
+#include <vector>
+
 #include "sim/render/profile_renderer.h"
+#include "sim/seabed/height_sampler.h"
 
 namespace sonarloop::render {
+
+// The heightfield march of one beam plane (profile renderer): per sample, what the horizon and
+// target tests need. Sized once, reused.
+struct ProfileLineScratch {
+  std::vector<float> edge_tan;  // target rays: in-plane tan(depression) of each tube edge
+  std::vector<float> ray_tan;   // target rays: in-plane tan(depression) of the ray
+  std::vector<float> ray_s;     // target rays: in-plane ground distance of the hit
+  std::vector<float> hit_r;     // target rays: hit range (inf: no hit)
+  std::vector<float> horizon;   // running minimum tan(depression) after each march sample
+};
+
+// The profile renderer's own buffers of one rendering thread (PingScratch::own).
+struct ProfileScratch final : RendererScratch {
+  ProfileLineScratch line;
+  seabed::HeightSampler heights;  // heightmap tiles of the scene being rendered
+};
 
 // One beam plane of a ping (see the header for the frame).
 struct ProfileRenderer::Line {

@@ -74,7 +74,8 @@ void ProfileRenderer::render(const scene::Scene& scene, const Pose& pose, std::u
   echo().start_lines(options, scratch);
   const seabed::SeabedModel& sb = scene.seabed();
   const MarchPlan plan = march_plan(fidelity_, sb.spacing_m(), sonar_.desc.bin_size_m);
-  scratch.heights.bind(sb, plan.level);
+  seabed::HeightSampler& heights = scratch.own_as<ProfileScratch>().heights;
+  heights.bind(sb, plan.level);
   const Vec3 o = pose.position_W;
 
   // altitude: the heightfield below the sonar, or a target straight below it
@@ -85,7 +86,7 @@ void ProfileRenderer::render(const scene::Scene& scene, const Pose& pose, std::u
     const Vec2 hi = sb.extent_max();
     if (o.x() >= lo.x() && o.y() >= lo.y() && o.x() <= hi.x() && o.y() <= hi.y()) {
       seabed::HeightSample hs;
-      scratch.heights.sample(o.x(), o.y(), hs);
+      heights.sample(o.x(), o.y(), hs);
       altitude = sb.water_depth_m() - hs.elevation_m - o.z();
     } else {
       altitude = scene.seabed_z(o.x(), o.y()) - o.z();
@@ -190,8 +191,8 @@ class ProfileRenderer::LineMarch {
         line_(line),
         options_(options),
         scratch_(scratch),
-        heights_(scratch.heights),
-        ls_(scratch.line),
+        heights_(scratch.own_as<ProfileScratch>().heights),
+        ls_(scratch.own_as<ProfileScratch>().line),
         acc_(scratch.accum[line.side].data()),
         bin_m_(sonar.desc.bin_size_m),
         inv_dr_(1.0 / bin_m_),

@@ -19,7 +19,7 @@ constexpr std::int64_t kMaxTargetRays = 1 << 16;
 
 void ProfileRenderer::cast_target_rays(const scene::Scene& scene, const Line& line,
                                        PingScratch& scratch) const {
-  ProfileLineScratch& ls = scratch.line;
+  ProfileLineScratch& ls = scratch.own_as<ProfileScratch>().line;
   ls.edge_tan.clear();
   ls.ray_tan.clear();
   ls.ray_s.clear();

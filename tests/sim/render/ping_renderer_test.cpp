@@ -309,6 +309,32 @@ TEST_CASE("render: the same seed renders byte-identical pings, another seed diff
   CHECK(a.stbd != c.stbd);
 }
 
+TEST_CASE("render: one scratch serves both renderers in turn, each making its own buffers") {
+  scene::SceneDesc desc = flat_scene("very_coarse_sand");
+  desc.seabed.elevation.rms_m = 0.2;
+  const scene::Scene sc(desc);
+  SonarDesc sd = test_sonar();
+  sd.speckle = true;
+  const SonarSetup setup = make_sonar_setup(sd, desc.water);
+  const auto profile = make_ping_renderer(RendererKind::kProfile, setup);
+  const auto raytrace = make_ping_renderer(RendererKind::kRaytrace, setup);
+  const Pose pose = level_pose(8.0, 30.0);
+  PingScratch fresh_profile, fresh_raytrace, shared;
+  PingLines p0, r0, p1, r1, p2;
+  profile->render(sc, pose, 7, 42, RenderOptions{}, fresh_profile, p0);
+  raytrace->render(sc, pose, 7, 42, RenderOptions{}, fresh_raytrace, r0);
+  CHECK(fresh_profile.own != nullptr);  // the profile renderer's own (the march's) buffers
+  profile->render(sc, pose, 7, 42, RenderOptions{}, shared, p1);
+  raytrace->render(sc, pose, 7, 42, RenderOptions{}, shared, r1);
+  profile->render(sc, pose, 7, 42, RenderOptions{}, shared, p2);
+  CHECK(p1.port == p0.port);
+  CHECK(p1.stbd == p0.stbd);
+  CHECK(r1.port == r0.port);
+  CHECK(r1.stbd == r0.stbd);
+  CHECK(p2.port == p0.port);
+  CHECK(p2.stbd == p0.stbd);
+}
+
 TEST_CASE("render: a sonar out of the water (or below the seabed) renders silent lines") {
   const RendererKind kind = any_renderer();
   const scene::SceneDesc desc = flat_scene("medium_sand");

@@ -12,6 +12,13 @@
 # Test cases tagged [may_skip] (tests/support/skip.h) run as an entry of their own
 # (test_NAME_may_skip), so that their skip (exit 77) shows as skipped without ending the file's
 # other cases.
+#
+# Test cases tagged [realtime] mostly wait on real time (a paced mission of three processes):
+# they too run as an entry of their own (test_NAME_realtime), which CTest's resource allocation
+# (scripts/test.sh: ctest -j N+1 --resource-spec-file build/ctest_resources.json) gives a "waits"
+# slot instead of one of the N "cores" slots every other entry takes. So a core is not left idle
+# while it waits: N busy entries run beside it. (Without the resource file, plain `ctest -j N`
+# runs every entry as one of N, as before.)
 
 # The precompiled header every test executable reuses: compiled once, with the flags of the tests
 # (and in the ASan build once more at -O0, for the folders compiled at -O0: a PCH serves only
@@ -93,21 +100,43 @@ function(sonarloop_add_test source)
   set(select ${exe} "-#" --warn NoTests)
   file(READ ${CMAKE_CURRENT_SOURCE_DIR}/${source} text)
   set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${source})
-  string(FIND "${text}" "[may_skip]" may_skip)
-  if(may_skip EQUAL -1)
-    add_test(NAME ${name} COMMAND ${select} "[#${file_tag}]"
-             WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
-    set_tests_properties(${name} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
-    if(name IN_LIST SONARLOOP_LONG_TESTS)
-      set_tests_properties(${name} PROPERTIES COST 100)
+  # the file's own entry: every case but those that run as an entry of their own
+  set(main_filter "[#${file_tag}]")
+  set(own_entries)
+  foreach(tag may_skip realtime)
+    string(FIND "${text}" "[${tag}]" found)
+    if(NOT found EQUAL -1)
+      string(APPEND main_filter "~[${tag}]")
+      list(APPEND own_entries ${tag})
     endif()
-  else()
-    add_test(NAME ${name} COMMAND ${select} "[#${file_tag}]~[may_skip]"
-             WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
-    add_test(NAME ${name}_may_skip COMMAND ${select} "[#${file_tag}][may_skip]"
-             WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
-    set_tests_properties(${name} ${name}_may_skip PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600)
+  endforeach()
+  add_test(NAME ${name} COMMAND ${select} "${main_filter}"
+           WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+  set_tests_properties(${name} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600 RESOURCE_GROUPS "cores:1")
+  if(name IN_LIST SONARLOOP_LONG_TESTS)
+    set_tests_properties(${name} PROPERTIES COST 100)
   endif()
+  foreach(tag ${own_entries})
+    add_test(NAME ${name}_${tag} COMMAND ${select} "[#${file_tag}][${tag}]"
+             WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+    set_tests_properties(${name}_${tag} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600
+                                                   RESOURCE_GROUPS "cores:1")
+  endforeach()
+  if(realtime IN_LIST own_entries)
+    # it waits: a "waits" slot, and it starts first (the longest entry)
+    set_tests_properties(${name}_realtime PROPERTIES RESOURCE_GROUPS "waits:1" COST 1000)
+  endif()
+endfunction()
+
+# sonarloop_write_ctest_resources(): the resource file of scripts/test.sh's ctest run,
+# build/ctest_resources.json: as many "cores" slots as the machine has logical cores, and one
+# "waits" slot ([realtime] entries). An entry added with add_test outside sonarloop_add_test
+# (a script, a Python or browser test) sets RESOURCE_GROUPS "cores:1" itself where it is added.
+function(sonarloop_write_ctest_resources)
+  cmake_host_system_information(RESULT cores QUERY NUMBER_OF_LOGICAL_CORES)
+  file(WRITE ${PROJECT_BINARY_DIR}/ctest_resources.json
+       "{\"version\": {\"major\": 1, \"minor\": 0}, \"local\": [{\"cores\": [{\"id\": \"0\", "
+       "\"slots\": ${cores}}], \"waits\": [{\"id\": \"0\", \"slots\": 1}]}]}\n")
 endfunction()
 
 # sonarloop_check_all_tests_registered(): fails the configuration when a *_test.cpp under tests/

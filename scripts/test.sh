@@ -33,4 +33,7 @@ else
   export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1 ${ASAN_OPTIONS:-}"
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1 ${UBSAN_OPTIONS:-}"
 fi
-ctest --test-dir "$dir" --output-on-failure -j "$(nproc)"
+# one entry per core, and besides them the entries that mostly wait on real time ([realtime]
+# cases, cmake/SonarloopTests.cmake: a "waits" slot of build/ctest_resources.json)
+ctest --test-dir "$dir" --output-on-failure -j "$(( $(nproc) + 1 ))" \
+  --resource-spec-file "$dir/ctest_resources.json"

@@ -191,7 +191,8 @@ TEST_CASE("lock-step: Ctrl-C stops the mission and still writes the report") {
 }
 
 TEST_CASE(
-    "--realtime: an uncertain contact is re-looked from ~90 degrees and confirmed, over loopback") {
+    "--realtime: an uncertain contact is re-looked from ~90 degrees and confirmed, over loopback",
+    "[realtime]") {
   testing::TempDir dir("mission_cli");
   const std::string& model = shared_model();
   const std::string report = dir.file("mission.json");
@@ -213,7 +214,8 @@ TEST_CASE(
   check_relooks(m);
 }
 
-TEST_CASE("--realtime: Ctrl-C stops the mission's three processes and still writes the report") {
+TEST_CASE("--realtime: Ctrl-C stops the mission's three processes and still writes the report",
+          "[realtime]") {
   testing::TempDir dir("mission_stop");
   const std::string& model = shared_model();
   const std::string report = dir.file("mission.json");

@@ -23,8 +23,8 @@
 //   north_m, east_m  the same point in metres: for latitude/longitude streams, in the local
 //                    tangent plane of the scenario's origin (OnboardOptions::frame_origin: the
 //                    frame of the scenario's scene.json and truth.json; `onboard --origin
-//                    first-ping`: the stream's first ping); for metre streams, the stream's own
-//                    northing/easting
+//                    first-ping`: the stream's first ping with a fix); for metre streams,
+//                    the stream's own northing/easting
 //   slant_range_m, ground_range_m   of the object's centre from the sonar at closest approach
 //   class            the identified class, null without a model
 //   mine_like        the mine / non-mine decision (Section 4.1.2), null without a model

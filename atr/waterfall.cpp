@@ -24,6 +24,13 @@ float level_db(double amplitude) {
   return amplitude > 0.0 ? static_cast<float>(20.0 * std::log10(amplitude)) : kNoEchoDb;
 }
 
+// A recorder writes latitude and longitude 0, 0 while it has no position fix (the real Iver2
+// recording's first ping); it is no position, and must not become the stream's origin.
+bool has_fix(const xtf::XtfPingHeader& h) {
+  return std::isfinite(h.sensor_y) && std::isfinite(h.sensor_x) && std::fabs(h.sensor_y) <= 90.0 &&
+         std::fabs(h.sensor_x) <= 180.0 && !(h.sensor_y == 0.0 && h.sensor_x == 0.0);
+}
+
 }  // namespace
 
 double footprint_along_m(const PingRecord& r) {
@@ -125,11 +132,17 @@ PingRecord Waterfall::make_record(const xtf::XtfFileHeader& header, const xtf::X
   r.ping_number = h.ping_number;
   r.time_utc_ns = xtf::time_utc_ns(h);
   if (header.nav_units == xtf::kNavUnitsLatLong) {
-    if (!plane_) plane_ = std::make_unique<LocalTangentPlane>(GeoPoint{h.sensor_y, h.sensor_x});
     geodetic_stream_ = true;
-    const Vec2 ne = plane_->to_local(GeoPoint{h.sensor_y, h.sensor_x});
-    r.north_m = ne.x();
-    r.east_m = ne.y();
+    if (has_fix(h)) {
+      if (!plane_) plane_ = std::make_unique<LocalTangentPlane>(GeoPoint{h.sensor_y, h.sensor_x});
+      const Vec2 ne = plane_->to_local(GeoPoint{h.sensor_y, h.sensor_x});
+      r.north_m = ne.x();
+      r.east_m = ne.y();
+    } else if (have_last_) {
+      // no fix in this ping: where the last one was
+      r.north_m = last_.north_m;
+      r.east_m = last_.east_m;
+    }  // else: before the first fix, at the origin the first fix will set
   } else {
     if (!have_origin_) {
       have_origin_ = true;

@@ -84,7 +84,9 @@ class Waterfall {
  public:
   // `frame_origin`: the origin of the local plane for latitude/longitude streams (a scenario's
   // origin, so that positions agree with its scene.json and truth.json); without it, the
-  // stream's first ping. Throws std::invalid_argument if capacity < 2 or the origin is invalid.
+  // stream's first ping with a position fix (latitude and longitude 0, 0, or out of range, is
+  // none: such a ping keeps the last position). Throws std::invalid_argument if capacity < 2 or the
+  // origin is invalid.
   explicit Waterfall(int capacity = kDefaultWaterfallPings,
                      std::optional<GeoPoint> frame_origin = std::nullopt);
 

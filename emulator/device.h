@@ -7,6 +7,7 @@
 //   SonarUdpDevice   (sonar_udp_device.h)  pings -> XTF datagrams over UDP (--udp)
 //   NavCanDevice     (nav_can_device.h)    NMEA 2000 frames -> one CAN transport (--can, each)
 //   RecorderDevice   (recorder_device.h)   pings, frames and truth -> files (--record)
+//   ImcDevice        (imc_device.h)        pings and navigation -> IMC over UDP (--imc)
 //
 // The inputs are not devices: the external pose (--pose-from) is read through
 // ExternalPoseInput (external_pose.h) by the render workers and the publisher alike.
@@ -27,6 +28,7 @@
 #include "drivers/can/can_frame.h"
 #include "emulator/render_queue.h"
 #include "emulator/run_stats.h"
+#include "sim/vehicle/nav_sensor.h"
 
 namespace sonarloop::emulator {
 
@@ -37,6 +39,10 @@ class Device {
   virtual void ping(const PingSlot& slot, std::span<const std::uint8_t> packet);
   // One navigation sample's NMEA 2000 frames, at UTC utc_ns.
   virtual void nav(std::span<const can::CanFrame> frames, std::int64_t utc_ns);
+  // The same sample's navigation solution, for devices that publish navigation in their own
+  // terms (IMC's EstimatedState); called before nav(), and only when the sample carries a pose
+  // (not while an external pose is stale).
+  virtual void nav_solution(const vehicle::NavSolution& solution, std::int64_t utc_ns);
   // Whether the device sends on the wire (timed) rather than records.
   virtual bool on_wire() const = 0;
   // Its counters into the run's statistics (called with every statistics update).

@@ -53,6 +53,7 @@
 #include "drivers/net/udp_sender.h"
 #include "drivers/xtf/xtf_types.h"
 #include "emulator/device.h"
+#include "emulator/imc_device.h"
 #include "emulator/pacer.h"
 #include "emulator/run_stats.h"
 #include "sim/render/ping_renderer.h"
@@ -65,10 +66,11 @@ namespace sonarloop::emulator {
 inline constexpr std::int64_t kMaxRateEpochUtcNs = 1767225600LL * 1'000'000'000LL;
 
 struct EmulatorOptions {
-  std::optional<double> duration_s;    // simulation seconds; default: the trajectory's duration
-                                       // (without end with --pose-from)
-  std::optional<net::HostPort> udp;    // --udp
-  std::vector<std::string> can_specs;  // --can, each opened with can::open_can_transport
+  std::optional<double> duration_s;     // simulation seconds; default: the trajectory's duration
+                                        // (without end with --pose-from)
+  std::optional<net::HostPort> udp;     // --udp
+  std::optional<ImcDeviceOptions> imc;  // --imc (imc_device.h)
+  std::vector<std::string> can_specs;   // --can, each opened with can::open_can_transport
   std::optional<std::string> record_dir;
   Rate rate;
   int threads = 1;  // render workers

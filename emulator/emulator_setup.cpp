@@ -8,6 +8,7 @@
 
 #include "drivers/xtf/xtf_codec.h"
 #include "emulator/emulator_impl.h"
+#include "emulator/imc_device.h"
 #include "emulator/nav_can_device.h"
 #include "emulator/recorder_device.h"
 #include "emulator/sonar_udp_device.h"
@@ -195,6 +196,12 @@ void Emulator::Impl::open_transports() {
   if (options.udp) {
     devices.push_back(std::make_unique<SonarUdpDevice>(*options.udp, options.udp_send_buffer_bytes,
                                                        header_bytes, packet_bytes));
+  }
+  if (options.imc) {
+    ImcSonarInfo info;
+    info.frequency_hz = setup.desc.frequency_hz;
+    info.max_range_m = setup.desc.max_range_m;
+    devices.push_back(std::make_unique<ImcDevice>(*options.imc, ltp, info));
   }
   for (const std::string& spec : options.can_specs) {
     try {

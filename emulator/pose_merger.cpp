@@ -312,6 +312,77 @@ bool PoseMerger::merge_pose_datagram(std::span<const std::uint8_t> datagram) {
     count_malformed_locked(std::move(error));
     return false;
   }
+  return merge_snapshot(*m, true, "pose message " + std::to_string(m->sequence));
+}
+
+std::optional<PoseMessage> pose_message_from_imc(const imc::EstimatedState& e, double timestamp_s,
+                                                 std::string& error) {
+  const double lat_deg = e.lat_rad * kDegPerRad;
+  const double lon_deg = e.lon_rad * kDegPerRad;
+  if (!std::isfinite(lat_deg) || !std::isfinite(lon_deg) || std::fabs(lat_deg) > 90.0 ||
+      std::fabs(lon_deg) > 180.0) {
+    error = "IMC EstimatedState: lat/lon not on the Earth";
+    return std::nullopt;
+  }
+  for (float v : {e.x_m, e.y_m, e.depth_m, e.alt_m, e.phi_rad, e.theta_rad, e.psi_rad}) {
+    if (!std::isfinite(v)) {
+      error = "IMC EstimatedState: a field is not finite";
+      return std::nullopt;
+    }
+  }
+  PoseMessage m;
+  // the NED offsets displace the reference point; beyond a tangent plane's reach it is not a
+  // position (the checks below refuse it)
+  try {
+    const GeoPoint at = LocalTangentPlane(GeoPoint{lat_deg, lon_deg}).to_geodetic(e.x_m, e.y_m);
+    m.latitude_deg = at.latitude_deg;
+    m.longitude_deg = at.longitude_deg;
+  } catch (const std::invalid_argument& x) {
+    error = std::string("IMC EstimatedState: ") + x.what();
+    return std::nullopt;
+  }
+  if (e.depth_m >= 0.0f) m.depth_m = e.depth_m;
+  if (e.alt_m >= 0.0f) m.altitude_m = e.alt_m;
+  m.heading_rad = e.psi_rad;
+  m.pitch_rad = e.theta_rad;
+  m.roll_rad = e.phi_rad;
+  if (std::isfinite(timestamp_s) && timestamp_s > 0.0 && timestamp_s < 9.2e9)
+    m.time_unix_ns = static_cast<std::int64_t>(std::llround(timestamp_s * 1e9));
+  return m;
+}
+
+bool PoseMerger::merge_imc_datagram(std::span<const std::uint8_t> datagram) {
+  imc::Packet packet;
+  const imc::DecodeStatus status = imc::decode(datagram, packet);
+  if (status == imc::DecodeStatus::kUnknownMessage ||
+      (status == imc::DecodeStatus::kOk &&
+       !std::holds_alternative<imc::EstimatedState>(packet.message))) {
+    count_ignored();
+    return false;
+  }
+  std::string error;
+  std::optional<PoseMessage> m;
+  if (status != imc::DecodeStatus::kOk) {
+    error = std::string("IMC packet: ") + imc::decode_status_name(status);
+  } else {
+    m = pose_message_from_imc(std::get<imc::EstimatedState>(packet.message),
+                              packet.header.timestamp_s, error);
+  }
+  if (!m) {
+    std::lock_guard lock(mu_);
+    count_malformed_locked(std::move(error));
+    return false;
+  }
+  return merge_snapshot(*m, false, "IMC EstimatedState");
+}
+
+void PoseMerger::count_ignored() {
+  std::lock_guard lock(mu_);
+  ++stats_.ignored;
+}
+
+bool PoseMerger::merge_snapshot(const PoseMessage& msg, bool sequenced, const std::string& what) {
+  const PoseMessage* m = &msg;
   ExternalPose p;
   p.has_position = !std::isnan(m->latitude_deg);
   if (p.has_position) {
@@ -331,7 +402,7 @@ bool PoseMerger::merge_pose_datagram(std::span<const std::uint8_t> datagram) {
   }
   const std::int64_t t = now_ns_();
   std::unique_lock lock(mu_);
-  if (have_sequence_) {
+  if (sequenced && have_sequence_) {
     // serial-number arithmetic: the signed distance from the last accepted message
     const auto d = static_cast<std::int32_t>(m->sequence - last_sequence_);
     if (d <= 0 && d >= -kSequenceReorderWindow) {
@@ -341,10 +412,12 @@ bool PoseMerger::merge_pose_datagram(std::span<const std::uint8_t> datagram) {
     if (d > 1) stats_.lost += static_cast<std::uint64_t>(d - 1);
   }
   // received, whatever its content: a rejected message is not lost
-  have_sequence_ = true;
-  last_sequence_ = m->sequence;
+  if (sequenced) {
+    have_sequence_ = true;
+    last_sequence_ = m->sequence;
+  }
   if (const std::string why = check_snapshot_locked(p, *m, t); !why.empty())
-    return reject_and_warn(lock, "pose message " + std::to_string(m->sequence) + ": " + why, t);
+    return reject_and_warn(lock, what + ": " + why, t);
   if (m->time_unix_ns != 0) {
     have_stamp_ = true;
     last_stamp_ns_ = m->time_unix_ns;

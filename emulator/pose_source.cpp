@@ -108,12 +108,15 @@ std::string CanPoseSource::describe() const {
 // ---- UdpPoseSource ----
 
 UdpPoseSource::UdpPoseSource(const net::HostPort& local, const LocalTangentPlane& ltp,
-                             std::function<std::int64_t()> now_ns, PoseSourceOptions options)
+                             std::function<std::int64_t()> now_ns, PoseSourceOptions options,
+                             UdpPoseFormat format)
     : options_(std::move(options)),
+      format_(format),
       merger_(ltp, std::move(now_ns), options_.limits,
               [this](const std::string& w) {
-                options_.on_warning("udp pose on " + net::to_string(receiver_.bound_address()) +
-                                    ": " + w);
+                options_.on_warning(std::string(format_ == UdpPoseFormat::kImc ? "imc" : "udp") +
+                                    " pose on " + net::to_string(receiver_.bound_address()) + ": " +
+                                    w);
               }),
       receiver_(local) {
   if (!options_.on_warning) options_.on_warning = warn_on_stderr;
@@ -131,6 +134,15 @@ void UdpPoseSource::run() {
     try {
       const auto got = receiver_.receive(buffer, options_.receive_timeout_ms);
       if (!got) continue;
+      if (format_ == UdpPoseFormat::kImc) {
+        // an IMC packet larger than the buffer is no EstimatedState (110 bytes): another
+        // message of the sender's (a SonarData), ignored
+        if (got->truncated)
+          merger_.count_ignored();
+        else
+          merger_.merge_imc_datagram(std::span<const std::uint8_t>(buffer.data(), got->size));
+        continue;
+      }
       if (got->truncated) {
         merger_.count_malformed("datagram of " + std::to_string(got->datagram_size) +
                                 " bytes is not a pose message (" +
@@ -148,8 +160,9 @@ void UdpPoseSource::run() {
 }
 
 std::string UdpPoseSource::describe() const {
-  return "udp pose on " + net::to_string(receiver_.bound_address()) + " (" +
-         counters(merger_.stats()) + ")";
+  return std::string(format_ == UdpPoseFormat::kImc ? "imc pose (EstimatedState)" : "udp pose") +
+         " on " + net::to_string(receiver_.bound_address()) + " (" + counters(merger_.stats()) +
+         ")";
 }
 
 // ---- open_pose_source ----
@@ -160,16 +173,20 @@ std::unique_ptr<PoseSource> open_pose_source(const std::string& spec, const Loca
   constexpr std::string_view kCan = "can:";
   constexpr std::string_view kSocketcand = "socketcand:";
   constexpr std::string_view kUdp = "udp:";
+  constexpr std::string_view kImcUdp = "imc:udp:";
   const std::string what = "--pose-from " + spec;
   try {
-    if (spec.starts_with(kUdp)) {
+    const bool imc = spec.starts_with(kImcUdp);
+    if (imc || spec.starts_with(kUdp)) {
       net::HostPort hp;
       try {
-        hp = net::parse_host_port(spec.substr(kUdp.size()));
+        hp = net::parse_host_port(spec.substr(imc ? kImcUdp.size() : kUdp.size()));
       } catch (const std::invalid_argument& e) {
         throw std::invalid_argument(what + ": " + e.what());
       }
-      return std::make_unique<UdpPoseSource>(hp, ltp, std::move(now_ns), options);
+      return std::make_unique<UdpPoseSource>(
+          hp, ltp, std::move(now_ns), options,
+          imc ? UdpPoseFormat::kImc : UdpPoseFormat::kPoseMessage);
     }
     if (spec.starts_with(kCan)) {
       const std::string iface = spec.substr(kCan.size());
@@ -212,7 +229,8 @@ std::unique_ptr<PoseSource> open_pose_source(const std::string& spec, const Loca
   }
   throw std::invalid_argument(what +
                               ": not a pose source: use can:IFACE, "
-                              "socketcand:HOST:PORT[:CHANNEL] or udp:HOST:PORT");
+                              "socketcand:HOST:PORT[:CHANNEL], udp:HOST:PORT or "
+                              "imc:udp:HOST:PORT");
 }
 
 }  // namespace sonarloop::emulator

@@ -7,7 +7,9 @@
 //   socketcand:HOST:PORT[:CHANNEL]   NMEA 2000 frames from a socketcand server: sonarloop connects
 //                                    as a client (rawmode, channel default vcan0)
 //   udp:HOST:PORT                    listens for the UDP pose message
-//   (drivers/pose/pose_message.md)
+//                                    (drivers/pose/pose_message.md)
+//   imc:udp:HOST:PORT                listens for IMC EstimatedState (drivers/imc/imc_codec.h), as
+//                                    DUNE publishes its navigation (its vehicle simulator too)
 //
 // Each source runs one background thread that receives and merges into the latest pose; latest()
 // may be called from any thread at any time.
@@ -30,7 +32,12 @@
 //                                  carry depths beyond the Offset field's 32.764 m; a deeper
 //                                  vehicle sends its depth with the UDP message instead.
 // A UDP pose message is a complete snapshot: it replaces the pose, and its NaN fields clear the
-// matching has_* flag (altitude_m NaN = no bottom lock).
+// matching has_* flag (altitude_m NaN = no bottom lock). So is an IMC EstimatedState
+// (pose_message_from_imc): its position is lat/lon displaced by the NED offsets x, y; depth and
+// alt when not negative (negative: invalid, not available); heading psi, pitch theta, roll phi;
+// time its header's time stamp. IMC has no sequence numbers: lost and out_of_order stay 0, and a
+// late packet is refused by its time stamp instead. Other IMC messages (Heartbeat, Announce,
+// ...) are counted as ignored.
 //
 // Time. received_ns is what the injected now_ns() returned when the last frame or message that
 // updated the pose was received; frames that change nothing (ignored PGNs, malformed data) leave
@@ -76,6 +83,7 @@
 
 #include "common/geodesy.h"
 #include "drivers/can/can_transport.h"
+#include "drivers/imc/imc_codec.h"
 #include "drivers/net/host_port.h"
 #include "drivers/net/udp_receiver.h"
 #include "drivers/pose/pose_message.h"
@@ -191,6 +199,10 @@ class PoseMerger {
   bool merge_n2k(const can::CanFrame& frame);
   // UDP datagram: decodes a pose message and replaces the pose (true), counts otherwise.
   bool merge_pose_datagram(std::span<const std::uint8_t> datagram);
+  // UDP datagram of IMC: an EstimatedState replaces the pose (true); other messages are
+  // counted as ignored, undecodable packets as malformed.
+  bool merge_imc_datagram(std::span<const std::uint8_t> datagram);
+  void count_ignored();
   void count_malformed(const std::string& what);
   void count_receive_error(const std::string& what);
   void count_reconnect();
@@ -214,6 +226,9 @@ class PoseMerger {
   // After a relative rejection: true when reanchor_after of them came in a row (then the
   // caller accepts the sample as the new reference).
   bool reanchor_due_locked(int& consecutive);
+  // A decoded snapshot (a pose message, or an IMC EstimatedState made one: no sequence number):
+  // checked, then the pose. `what` names it in a rejection's warning.
+  bool merge_snapshot(const PoseMessage& m, bool sequenced, const std::string& what);
   // The absolute and relative checks of a decoded UDP snapshot (mu_ held).
   std::string check_snapshot_locked(const ExternalPose& p, const PoseMessage& m,
                                     std::int64_t arrival_ns);
@@ -290,13 +305,23 @@ class CanPoseSource final : public PoseSource {
   std::thread thread_;
 };
 
-// The UDP pose message on a bound UDP port.
+// An IMC EstimatedState as a pose snapshot (see "Merging" above); nullopt with `error` set when
+// a value is not finite or the position is not on the Earth. time_unix_ns: the time stamp
+// (0 when it is not positive).
+std::optional<PoseMessage> pose_message_from_imc(const imc::EstimatedState& e, double timestamp_s,
+                                                 std::string& error);
+
+// What a UdpPoseSource listens for.
+enum class UdpPoseFormat { kPoseMessage, kImc };
+
+// The UDP pose message, or IMC, on a bound UDP port.
 class UdpPoseSource final : public PoseSource {
  public:
   // Binds `local` (port 0: ephemeral, see bound_port()). Throws std::runtime_error naming the
   // address if it cannot (e.g. the port is in use).
   UdpPoseSource(const net::HostPort& local, const LocalTangentPlane& ltp,
-                std::function<std::int64_t()> now_ns, PoseSourceOptions options = {});
+                std::function<std::int64_t()> now_ns, PoseSourceOptions options = {},
+                UdpPoseFormat format = UdpPoseFormat::kPoseMessage);
   ~UdpPoseSource() override;
   UdpPoseSource(const UdpPoseSource&) = delete;
   UdpPoseSource& operator=(const UdpPoseSource&) = delete;
@@ -314,6 +339,7 @@ class UdpPoseSource final : public PoseSource {
   void run();
 
   PoseSourceOptions options_;
+  UdpPoseFormat format_;
   PoseMerger merger_;
   net::UdpReceiver receiver_;
   std::atomic<bool> stopping_{false};

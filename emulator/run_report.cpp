@@ -78,6 +78,11 @@ void print_run_summary(const emulator::RunStats& s, const char* how) {
                  static_cast<unsigned long long>(s.udp_header_datagrams),
                  static_cast<unsigned long long>(s.udp_dropped));
   }
+  if (s.imc_datagrams) {
+    std::fprintf(stderr, "  imc: %llu packets, %llu refused or dropped by the kernel\n",
+                 static_cast<unsigned long long>(s.imc_datagrams),
+                 static_cast<unsigned long long>(s.imc_dropped));
+  }
   std::fprintf(stderr,
                "  render: %llu pings, %.2f ms mean, %.2f ms max on %d threads; %llu heightmap "
                "tiles made\n",

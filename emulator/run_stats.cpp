@@ -175,6 +175,12 @@ std::string stats_json(const RunStats& s) {
   w.field("datagrams", s.udp_datagrams).field("header_datagrams", s.udp_header_datagrams);
   w.field("dropped", s.udp_dropped).field("bytes", s.udp_bytes);
   w.end_object();
+  if (s.imc_datagrams) {
+    w.key("imc").begin_object();
+    w.field("datagrams", s.imc_datagrams).field("dropped", s.imc_dropped);
+    w.field("bytes", s.imc_bytes);
+    w.end_object();
+  }
   w.field("recorded_pings", s.recorded_pings);
   w.key("scene").begin_object();
   w.field("tiles_made", s.tiles_made);

@@ -105,6 +105,9 @@ struct RunStats {
   std::uint64_t udp_header_datagrams = 0;
   std::uint64_t udp_dropped = 0;  // refused or queue full (counted by the sender)
   std::uint64_t udp_bytes = 0;
+  std::uint64_t imc_datagrams = 0;  // IMC packets handed to the kernel (--imc)
+  std::uint64_t imc_dropped = 0;
+  std::uint64_t imc_bytes = 0;
   std::uint64_t recorded_pings = 0;
   std::string recording_error;  // the write error that stopped --record ("" if none)
 

@@ -9,8 +9,8 @@
 #   --build DIR  use the harnesses of an existing sanitizer build (scripts/test.sh's build-test:
 #                there the libraries that parse outside data carry the coverage, the simulator
 #                does not) instead of building build-fuzz/; what CI does, to save a build
-#   HARNESS      xtf_decode xtf_file candump_line socketcand n2k_decode pose_message model_file
-#                scenario_yaml stream_receiver png_chip (default: all)
+#   HARNESS      xtf_decode xtf_file candump_line socketcand n2k_decode pose_message imc_decode
+#                model_file scenario_yaml stream_receiver png_chip (default: all)
 # By default builds build-fuzz/ (clang, -DSONARLOOP_FUZZ=ON: every library instrumented for
 # coverage; only the harnesses and the libraries they link). Copies the seed corpus of
 # tests/fuzz/corpus/NAME into DIR/fuzz/corpus/NAME (the fuzzer grows it there, never in the source
@@ -35,8 +35,8 @@ if [ "$seconds" = "--runs" ]; then
   shift
   seconds=86400  # the runs end it
 fi
-all=(xtf_decode xtf_file candump_line socketcand n2k_decode pose_message model_file scenario_yaml
-     stream_receiver png_chip)
+all=(xtf_decode xtf_file candump_line socketcand n2k_decode pose_message imc_decode model_file
+     scenario_yaml stream_receiver png_chip)
 harnesses=("$@")
 if [ ${#harnesses[@]} -eq 0 ]; then harnesses=("${all[@]}"); fi
 

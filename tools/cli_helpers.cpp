@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "config/loader/scenario_loader.h"
+#include "emulator/imc_device.h"
 
 namespace sonarloop::tools {
 namespace {
@@ -89,6 +90,36 @@ render::RendererKind renderer_option(const Args& args) {
   const auto kind = render::parse_renderer(name);
   if (!kind) throw UsageError("--renderer: '" + name + "' is not one of profile, raytrace");
   return *kind;
+}
+
+std::optional<net::HostPort> imc_option(const Args& args) {
+  const auto text = args.get("--imc");
+  if (!text) return std::nullopt;
+  if (text->rfind("udp:", 0) != 0)
+    throw UsageError("--imc " + *text + ": expected udp:HOST:PORT (IMC over UDP)");
+  net::HostPort hp;
+  try {
+    hp = net::parse_host_port(text->substr(4));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("--imc " + *text + ": " + e.what());
+  }
+  if (hp.port == 0) throw UsageError("--imc " + *text + ": the port must not be 0");
+  return hp;
+}
+
+std::uint16_t imc_system_option(const Args& args) {
+  const auto text = args.get("--imc-system");
+  if (!text) return emulator::kDefaultImcSystem;
+  std::size_t used = 0;
+  unsigned long v = 0;
+  try {
+    v = std::stoul(*text, &used, 0);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text->size() || v < 1 || v > 0xFFFE)
+    throw UsageError("--imc-system " + *text + ": expected an IMC address 1..0xFFFE (e.g. 0x2050)");
+  return static_cast<std::uint16_t>(v);
 }
 
 namespace {

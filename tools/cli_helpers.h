@@ -8,6 +8,7 @@
 #include "atr/chip_preprocess.h"
 #include "atr/subspace_classifier.h"
 #include "autonomy/survey.h"
+#include "drivers/net/host_port.h"
 #include "mission/agent_setup.h"
 #include "sim/render/chip_renderer.h"
 #include "sim/render/ping_renderer.h"
@@ -51,6 +52,11 @@ mission::AgentOverrides agent_options(const Args& args);
 
 // --renderer profile|raytrace (default profile); a UsageError names the choices.
 render::RendererKind renderer_option(const Args& args);
+
+// --imc udp:HOST:PORT (IMC packets to that address; the port must not be 0); nullopt without it.
+std::optional<net::HostPort> imc_option(const Args& args);
+// --imc-system ID (decimal or 0x hex, 1..0xFFFE; default emulator::kDefaultImcSystem).
+std::uint16_t imc_system_option(const Args& args);
 
 // The chip pre-processing options of train and sweep (atr/chip_preprocess.h): --crop F,
 // --multilook K, --levels db|above_seabed|below_seabed|three_level, --threshold-db T. The

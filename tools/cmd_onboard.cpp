@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "atr/contact_writer.h"
+#include "atr/imc_contacts.h"
 #include "atr/onboard_pipeline.h"
 #include "atr/onboard_report.h"
 #include "atr/packet_queue.h"
@@ -193,6 +194,8 @@ int run_onboard(const std::vector<std::string>& argv) {
                          {"--xtf"},
                          {"--model"},
                          {"--contacts"},
+                         {"--imc"},
+                         {"--imc-system"},
                          {"--duration"},
                          {"--idle-exit"},
                          {"--reorder-window"},
@@ -267,8 +270,18 @@ int run_onboard(const std::vector<std::string>& argv) {
     }
   }
   ContactWriter contacts(args.get("--contacts"), stdout);
+  std::optional<atr::ImcContactSender> imc;
+  if (const auto to = imc_option(args)) {
+    imc.emplace(*to, imc_system_option(args));
+    if (!quiet)
+      std::fprintf(stderr, "sonarloop onboard: contacts also as IMC map features to %s\n",
+                   imc->describe().c_str());
+  } else if (args.has("--imc-system")) {
+    throw UsageError("--imc-system applies to --imc only");
+  }
   atr::OnboardPipeline pipeline(std::move(model), options, [&](const atr::Contact& c) {
     contacts.write(c);
+    if (imc) imc->send(c);
     if (web) web->hub.push_contact(c);
   });
   Consumer consumer{pipeline, web.get(), xtf_path.has_value(), CpuMeter{}, {}};
@@ -329,6 +342,12 @@ options:
   --contacts FILE        write the contacts there (JSON Lines; default stdout); udp:HOST:PORT
                          sends each contact's JSON line as one UDP datagram there instead
                          (e.g. to `sonarloop autonomy --contacts`)
+  --imc udp:HOST:PORT    also send each contact there as IMC (docs/formats.md §7): a CcuEvent
+                         "map feature added" with a point of interest at the contact, the
+                         mark a Neptus console offers to put on its map (contacts with a
+                         latitude and longitude only)
+  --imc-system ID        the IMC address the contacts come from (default 0x2050, the
+                         emulated vehicle's of `run --imc`)
   --duration S           stop after S seconds of listening
   --idle-exit S          stop when no datagram has come for S seconds (after the first)
   --reorder-window N     pings held to put late datagrams back in order (default 32)
@@ -347,7 +366,8 @@ options:
   --scenario FILE        the scenario flown (YAML; default: the embedded default scenario):
                          its origin is the origin of the contacts' north_m / east_m
   --origin LAT,LON       that origin given directly, in degrees; `--origin first-ping`: the
-                         stream's first ping (for recordings of no scenario, e.g. real data)
+                         stream's first ping with a position fix (for recordings of no
+                         scenario, e.g. real data; latitude and longitude 0, 0 is no fix)
   --stats-json FILE      write the final statistics as JSON
   --quiet                no start-up lines (warnings and the final statistics still print)
   --web HOST:PORT        serve the live operator view there (docs/web.md): waterfall, track,
@@ -363,6 +383,7 @@ examples:
   sonarloop onboard --xtf out/run/pings.xtf --model out/atr.slpca
   sonarloop onboard --xtf survey.xtf --model real.slpca --origin first-ping
   sonarloop onboard --listen 127.0.0.1:5600 --model out/atr.slpca --web 8080
+  sonarloop onboard --listen 127.0.0.1:5600 --model default --imc udp:127.0.0.1:6001
 )",
     run_onboard, 15};
 SONARLOOP_REGISTER_COMMAND(kOnboardCommand);

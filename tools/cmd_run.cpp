@@ -62,6 +62,15 @@ emulator::EmulatorOptions emulator_options(const Args& args) {
     }
     if (o.udp->port == 0) throw UsageError("--udp " + *udp + ": the port must not be 0");
   }
+  if (const auto imc = imc_option(args)) {
+    emulator::ImcDeviceOptions io;
+    io.destination = *imc;
+    io.system = imc_system_option(args);
+    io.system_name = args.get_or("--imc-name", "sonarloop");
+    o.imc = io;
+  } else if (args.has("--imc-system") || args.has("--imc-name")) {
+    throw UsageError("--imc-system and --imc-name apply to --imc only");
+  }
   o.can_specs = args.get_all("--can");
   o.record_dir = args.get("--record");
   try {
@@ -72,6 +81,9 @@ emulator::EmulatorOptions emulator_options(const Args& args) {
   o.threads = static_cast<int>(args.get_int("--threads", 1, 256)
                                    .value_or(std::max(1u, std::thread::hardware_concurrency())));
   o.pose_from = args.get("--pose-from");
+  // where the emulated vehicle listens, for an IMC console (Announce's services)
+  if (o.imc && o.pose_from && o.pose_from->rfind("imc:udp:", 0) == 0)
+    o.imc->services = "imc+udp://" + o.pose_from->substr(8) + "/";
   o.renderer = renderer_option(args);
   o.stale_after_s = args.get_double("--stale-after", 1e-3, 3600.0).value_or(2.0);
   o.pose_delay_s = args.get_double("--pose-delay", 0.0, 3600.0).value_or(o.pose_delay_s);
@@ -142,6 +154,9 @@ int finish_run(const emulator::RunStats& stats, InProcessOnboard* onboard, WebVi
 int run_run(const std::vector<std::string>& argv) {
   const Args args(argv, {{"--duration"},
                          {"--udp"},
+                         {"--imc"},
+                         {"--imc-system"},
+                         {"--imc-name"},
                          {"--can", true, true},
                          {"--record"},
                          {"--rate"},
@@ -266,6 +281,11 @@ options:
   --duration S           simulated seconds to run (default: the trajectory's duration;
                          with --pose-from: until stopped)
   --udp HOST:PORT        stream the pings there (default: no stream)
+  --imc udp:HOST:PORT    also speak IMC there (DUNE / Neptus; docs/formats.md §7): SonarData
+                         per ping, EstimatedState at 10 Hz, Heartbeat and Announce, unicast
+                         (Neptus listens on port 6001 by default)
+  --imc-system ID        the emulated vehicle's IMC address (default 0x2050)
+  --imc-name NAME        its IMC system name, as a console lists it (default sonarloop)
   --can SPEC             publish navigation on SPEC; repeat for several: vcan0 (SocketCAN),
                          socketcand:HOST:PORT (a socketcand server for python-can & co),
                          log:FILE (candump log), none
@@ -325,6 +345,7 @@ examples:
   sonarloop run --udp 127.0.0.1:5600 --realtime-priority 50 --lateness-tolerance-ms 2
   sonarloop run --rate max --classify out/atr.slpca --contacts out/contacts.jsonl
   sonarloop run --udp 127.0.0.1:5600 --web 8080     (then open http://127.0.0.1:8080/)
+  sonarloop run --imc udp:127.0.0.1:6001 --imc-name auv-sim     (a Neptus console on this host)
   sonarloop run --classify out/atr.slpca --web 127.0.0.1:0
 )",
     run_run, 10};

@@ -119,8 +119,9 @@ TEST_CASE("pose source: malformed specs are rejected") {
   const LocalTangentPlane ltp(kOrigin);
   auto now = [] { return std::int64_t{0}; };
   CHECK_THROWS_AS(open_pose_source("gps:/dev/ttyS0", ltp, now), std::invalid_argument);
-  CHECK_THROWS_WITH(open_pose_source("gps:/dev/ttyS0", ltp, now),
-                    Contains("can:IFACE, socketcand:HOST:PORT[:CHANNEL] or udp:HOST:PORT"));
+  CHECK_THROWS_WITH(
+      open_pose_source("gps:/dev/ttyS0", ltp, now),
+      Contains("can:IFACE, socketcand:HOST:PORT[:CHANNEL], udp:HOST:PORT or imc:udp:HOST:PORT"));
   CHECK_THROWS_AS(open_pose_source("udp:example.org:5700", ltp, now), std::invalid_argument);
   CHECK_THROWS_AS(open_pose_source("socketcand:127.0.0.1", ltp, now), std::invalid_argument);
   CHECK_THROWS_AS(open_pose_source("can:", ltp, now), std::invalid_argument);

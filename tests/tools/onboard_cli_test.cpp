@@ -21,6 +21,8 @@
 
 #include "common/geodesy.h"
 #include "config/loader/scenario_loader.h"
+#include "drivers/imc/imc_codec.h"
+#include "drivers/net/udp_receiver.h"
 #include "sim/targets/target_type.h"
 #include "tests/support/temp_dir.h"
 #include "tests/tools/sonarloop_cli.h"
@@ -252,6 +254,44 @@ TEST_CASE("onboard cli: the default scenario's four targets, in-process, over UD
     WARN("the emulator dropped " << due - sent << " of " << due
                                  << " pings: contacts not compared with the truth");
   }
+}
+
+TEST_CASE("onboard cli: --imc sends each located contact as a map feature (a real recording)") {
+  testing::TempDir dir("onboard-cli-imc");
+  net::UdpReceiver rx(net::parse_host_port("127.0.0.1:0"), 1 << 20);
+  const std::string xtf = std::string(SONARLOOP_SOURCE_DIR) + "/tests/data/xtf/scotsman-iver2.xtf";
+  REQUIRE(run_logged(dir,
+                     "onboard --xtf " + xtf + " --origin first-ping --contacts " +
+                         dir.file("c.jsonl") + " --imc udp:127.0.0.1:" +
+                         std::to_string(rx.bound_port()) + " --imc-system 0x2102",
+                     "imc") == 0);
+  std::size_t contacts = 0;
+  {
+    std::ifstream in(dir.file("c.jsonl"));
+    std::string line;
+    while (std::getline(in, line))
+      contacts += line.find("\"latitude_deg\":") != std::string::npos;
+  }
+  REQUIRE(contacts > 0);
+  std::vector<std::uint8_t> buf(70000);
+  std::size_t events = 0;
+  while (const auto d = rx.receive(buf, 500)) {
+    imc::Packet p;
+    REQUIRE(imc::decode(std::span<const std::uint8_t>(buf.data(), d->datagram_size), p) ==
+            imc::DecodeStatus::kOk);
+    CHECK(p.header.src == 0x2102);
+    const auto& e = std::get<imc::CcuEvent>(p.message);
+    REQUIRE(e.arg);
+    CHECK(e.arg->id.rfind("c", 0) == 0);
+    REQUIRE(e.arg->feature.size() == 1);
+    // the recording's pings are at 48.4455 N, 68.8279 W (its first ping has no fix: 0, 0)
+    CHECK(e.arg->feature[0].lat_rad * 180.0 / M_PI == Approx(48.4455).margin(0.002));
+    CHECK(e.arg->feature[0].lon_rad * 180.0 / M_PI == Approx(-68.8279).margin(0.003));
+    ++events;
+  }
+  CHECK(events == contacts);
+  CHECK(run_logged(dir, "onboard --xtf " + xtf + " --imc 127.0.0.1:6001", "u") == 2);
+  CHECK(run_logged(dir, "onboard --xtf " + xtf + " --imc-system 0x2000", "u") == 2);
 }
 
 TEST_CASE("onboard cli: usage errors") {

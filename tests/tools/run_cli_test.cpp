@@ -27,6 +27,7 @@
 #include "config/loader/scenario_loader.h"
 #include "drivers/can/candump_log.h"
 #include "drivers/can/socketcan.h"
+#include "drivers/imc/imc_codec.h"
 #include "drivers/n2k/messages.h"
 #include "drivers/net/udp_receiver.h"
 #include "drivers/xtf/xtf_codec.h"
@@ -207,6 +208,39 @@ TEST_CASE("run cli: at --rate max every datagram arrives, valid, in order, equal
   CHECK(slurp(dir.file("b/pings.xtf")) == recorded);
   CHECK(slurp(dir.file("b/nav.log")) == slurp(dir.file("a/nav.log")));
   CHECK(slurp(dir.file("b/truth.csv")) == slurp(dir.file("a/truth.csv")));
+}
+
+TEST_CASE("run cli: --imc sends IMC packets that decode, counted in --stats-json") {
+  testing::TempDir dir("run-cli-imc");
+  write_file(dir.file("s.yaml"), testing::small_scenario_yaml());
+  Receiver rx;
+  REQUIRE(run("run " + dir.file("s.yaml") +
+                  " --rate max --duration 3 --imc udp:127.0.0.1:" + std::to_string(rx.port()) +
+                  " --imc-system 0x2101 --imc-name emu --stats-json " + dir.file("a.json"),
+              dir.file("a.err")) == 0);
+  const auto& got = rx.finish();
+  INFO(slurp(dir.file("a.err")));
+  REQUIRE(!got.empty());
+  std::size_t sonar = 0, state = 0, announce = 0;
+  for (const auto& d : got) {
+    imc::Packet p;
+    REQUIRE(imc::decode(d, p) == imc::DecodeStatus::kOk);
+    CHECK(p.header.src == 0x2101);
+    sonar += std::holds_alternative<imc::SonarData>(p.message);
+    state += std::holds_alternative<imc::EstimatedState>(p.message);
+    if (const auto* a = std::get_if<imc::Announce>(&p.message)) {
+      CHECK(a->sys_name == "emu");
+      ++announce;
+    }
+  }
+  const std::string json = slurp(dir.file("a.json"));
+  const std::size_t imc = json.find("\"imc\": {");
+  REQUIRE(imc != std::string::npos);
+  CHECK(json.find("\"datagrams\": " + std::to_string(got.size()) + ",", imc) ==
+        json.find("\"datagrams\": ", imc));
+  CHECK(json.find("\"sent\": " + std::to_string(sonar) + ",") != std::string::npos);
+  CHECK(state >= 29);  // 10 Hz for 3 s
+  CHECK(announce == 1);
 }
 
 TEST_CASE("run cli: python-can reads nav.log; positions and headings match the vehicle's nav") {
@@ -470,6 +504,13 @@ TEST_CASE("run cli: bad input gets a clear error") {
     CHECK(run("run " + s + " --lateness-tolerance-ms nan") == 2);
     CHECK(run("run " + s + " --can nonsense:spec", dir.file("err")) == 1);
     CHECK(slurp(dir.file("err")).find("nonsense:spec") != std::string::npos);
+    CHECK(run("run " + s + " --imc 127.0.0.1:6001", dir.file("err")) == 2);
+    CHECK(slurp(dir.file("err")).find("udp:HOST:PORT") != std::string::npos);
+    CHECK(run("run " + s + " --imc udp:127.0.0.1:0") == 2);
+    CHECK(run("run " + s + " --imc udp:127.0.0.1:6001 --imc-system 0") == 2);
+    CHECK(run("run " + s + " --imc udp:127.0.0.1:6001 --imc-system 0x10000") == 2);
+    CHECK(run("run " + s + " --imc-name auv", dir.file("err")) == 2);
+    CHECK(slurp(dir.file("err")).find("--imc only") != std::string::npos);
   }
   SECTION("an absurd ping period, named with its allowed range") {
     // issue 11: 1e-9 s was accepted and `run --duration 2` never ended

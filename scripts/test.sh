@@ -35,5 +35,7 @@ else
 fi
 # one entry per core, and besides them the entries that mostly wait on real time ([realtime]
 # cases, cmake/SonarloopTests.cmake: a "waits" slot of build/ctest_resources.json)
+# (ctest reads the resource file from inside the test directory: the path must be absolute)
+dir=$(cd "$dir" && pwd)
 ctest --test-dir "$dir" --output-on-failure -j "$(( $(nproc) + 1 ))" \
   --resource-spec-file "$dir/ctest_resources.json"

@@ -74,6 +74,7 @@
 #include <vector>
 
 #include "atr/subspace_classifier.h"
+#include "drivers/io/crc32.h"
 
 namespace sonarloop::atr {
 
@@ -90,7 +91,8 @@ Model decode_model(std::span<const std::uint8_t> bytes, const std::string& name 
 void save_model(const Model& m, const std::string& path);
 Model load_model(const std::string& path, std::uint16_t* version = nullptr);
 
-// CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320, initial and final XOR 0xFFFFFFFF).
-std::uint32_t crc32(std::span<const std::uint8_t> bytes);
+// CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320, initial and final XOR 0xFFFFFFFF;
+// drivers/io/crc32.h).
+using io::crc32;
 
 }  // namespace sonarloop::atr

@@ -8,6 +8,7 @@
 //   NavCanDevice     (nav_can_device.h)    NMEA 2000 frames -> one CAN transport (--can, each)
 //   RecorderDevice   (recorder_device.h)   pings, frames and truth -> files (--record)
 //   ImcDevice        (imc_device.h)        pings and navigation -> IMC over UDP (--imc)
+//   McapDevice       (mcap_device.h)       pings, navigation, truth -> MCAP for ROS 2 (--record)
 //
 // The inputs are not devices: the external pose (--pose-from) is read through
 // ExternalPoseInput (external_pose.h) by the render workers and the publisher alike.
@@ -40,8 +41,8 @@ class Device {
   // One navigation sample's NMEA 2000 frames, at UTC utc_ns.
   virtual void nav(std::span<const can::CanFrame> frames, std::int64_t utc_ns);
   // The same sample's navigation solution, for devices that publish navigation in their own
-  // terms (IMC's EstimatedState); called before nav(), and only when the sample carries a pose
-  // (not while an external pose is stale).
+  // terms (IMC's EstimatedState, MCAP's fix and pose); called before nav(), for the samples that
+  // carry the position (129025, every 100 ms; not while an external pose is stale).
   virtual void nav_solution(const vehicle::NavSolution& solution, std::int64_t utc_ns);
   // Whether the device sends on the wire (timed) rather than records.
   virtual bool on_wire() const = 0;

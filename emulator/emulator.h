@@ -54,6 +54,7 @@
 #include "drivers/xtf/xtf_types.h"
 #include "emulator/device.h"
 #include "emulator/imc_device.h"
+#include "emulator/mcap_device.h"
 #include "emulator/pacer.h"
 #include "emulator/run_stats.h"
 #include "sim/render/ping_renderer.h"
@@ -72,6 +73,7 @@ struct EmulatorOptions {
   std::optional<ImcDeviceOptions> imc;  // --imc (imc_device.h)
   std::vector<std::string> can_specs;   // --can, each opened with can::open_can_transport
   std::optional<std::string> record_dir;
+  std::optional<std::string> mcap_path;  // the MCAP recording (mcap_device.h)
   Rate rate;
   int threads = 1;  // render workers
   std::optional<std::string> pose_from;

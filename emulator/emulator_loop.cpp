@@ -143,7 +143,7 @@ void Emulator::Impl::publish_nav(const NavSchedule::Sample& sample) {
   const std::int64_t utc = epoch_utc_ns + t;
   const std::size_t n = make_nav_frames(solution, ltp, utc, sid.current(), due, frames);
   const std::span<const can::CanFrame> sample_frames(frames.data(), n);
-  if (due & ~pose_free_pgns()) {
+  if (due & kPositionPgnBit) {
     for (auto& d : devices)
       d->nav_solution(solution, utc);
   }

@@ -9,6 +9,7 @@
 #include "drivers/xtf/xtf_codec.h"
 #include "emulator/emulator_impl.h"
 #include "emulator/imc_device.h"
+#include "emulator/mcap_device.h"
 #include "emulator/nav_can_device.h"
 #include "emulator/recorder_device.h"
 #include "emulator/sonar_udp_device.h"
@@ -218,6 +219,13 @@ void Emulator::Impl::open_transports() {
     devices.push_back(
         std::make_unique<RecorderDevice>(std::make_unique<Recording>(*options.record_dir, header),
                                          [this](const std::string& w) { message(w); }));
+  }
+  if (options.mcap_path) {
+    McapSonarInfo info;
+    info.frequency_hz = setup.desc.frequency_hz;
+    info.sound_speed_m_s = setup.sound_speed_m_s;
+    info.bin_size_m = setup.desc.bin_size_m;
+    devices.push_back(std::make_unique<McapDevice>(*options.mcap_path, ltp, info));
   }
   if (options.pose_from) {
     Clock* c = &clock;

@@ -56,6 +56,8 @@ using NavPgnMask = std::uint32_t;
 inline constexpr NavPgnMask kAllNavPgns = (1u << kNavPgnCount) - 1;
 // The PGNs that do not depend on the pose (System Time).
 NavPgnMask pose_free_pgns();
+// The bit of 129025 Position, Rapid Update (kNavPgns[0]): a sample with it is a 10 Hz fix.
+inline constexpr NavPgnMask kPositionPgnBit = 1u << 0;
 
 class NavSchedule {
  public:

@@ -78,6 +78,10 @@ void print_run_summary(const emulator::RunStats& s, const char* how) {
                  static_cast<unsigned long long>(s.udp_header_datagrams),
                  static_cast<unsigned long long>(s.udp_dropped));
   }
+  if (s.mcap_messages) {
+    std::fprintf(stderr, "  mcap: %llu messages\n",
+                 static_cast<unsigned long long>(s.mcap_messages));
+  }
   if (s.imc_datagrams) {
     std::fprintf(stderr, "  imc: %llu packets, %llu refused or dropped by the kernel\n",
                  static_cast<unsigned long long>(s.imc_datagrams),

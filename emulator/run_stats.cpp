@@ -182,6 +182,7 @@ std::string stats_json(const RunStats& s) {
     w.end_object();
   }
   w.field("recorded_pings", s.recorded_pings);
+  if (s.mcap_messages || !s.mcap_error.empty()) w.field("mcap_messages", s.mcap_messages);
   w.key("scene").begin_object();
   w.field("tiles_made", s.tiles_made);
   w.end_object();

@@ -109,7 +109,9 @@ struct RunStats {
   std::uint64_t imc_dropped = 0;
   std::uint64_t imc_bytes = 0;
   std::uint64_t recorded_pings = 0;
-  std::string recording_error;  // the write error that stopped --record ("" if none)
+  std::string recording_error;      // the write error that stopped --record ("" if none)
+  std::uint64_t mcap_messages = 0;  // messages in the MCAP recording (--record, --mcap)
+  std::string mcap_error;           // the error that stopped it ("" if none)
 
   // rendering (from the render queue and the view cache)
   std::uint64_t pings_rendered = 0;

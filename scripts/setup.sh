@@ -4,12 +4,17 @@
 set -euo pipefail
 pkgs=(build-essential cmake ninja-build pkg-config
       libembree-dev libeigen3-dev libyaml-cpp-dev catch2 libpng-dev libjpeg-dev
-      libcpp-httplib-dev
+      libcpp-httplib-dev libzstd-dev
       can-utils python3-can python3-numpy python3-matplotlib python3-yaml iproute2
       openmpi-bin libopenmpi-dev)
 # for the tests only (scripts/test.sh sets SONARLOOP_BUILD_ALL=1): headless Chromium drives the
 # live web view in a real browser (test_web_browser; it skips without it). Large: ~300 MB.
-if [ "${SONARLOOP_BUILD_ALL:-0}" = 1 ]; then pkgs+=(chromium); fi
+# Node and npm run the independent MCAP reader (@mcap/core from the npm registry) of
+# tests/emulator/mcap_reader_test.js; a machine with its own node (e.g. NodeSource's) keeps it.
+if [ "${SONARLOOP_BUILD_ALL:-0}" = 1 ]; then
+  pkgs+=(chromium)
+  if ! command -v npm >/dev/null 2>&1; then pkgs+=(nodejs npm); fi
+fi
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

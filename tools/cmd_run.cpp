@@ -73,6 +73,12 @@ emulator::EmulatorOptions emulator_options(const Args& args) {
   }
   o.can_specs = args.get_all("--can");
   o.record_dir = args.get("--record");
+  // the MCAP recording: --mcap FILE, else DIR/run.mcap with --record; `--mcap none`: none
+  if (const auto mcap = args.get("--mcap")) {
+    if (*mcap != "none") o.mcap_path = *mcap;
+  } else if (o.record_dir) {
+    o.mcap_path = *o.record_dir + "/run.mcap";
+  }
   try {
     o.rate = emulator::parse_rate(args.get_or("--rate", "realtime"));
   } catch (const std::invalid_argument& e) {
@@ -144,11 +150,14 @@ int finish_run(const emulator::RunStats& stats, InProcessOnboard* onboard, WebVi
     print_web_summary(*web);
   }
   // after the statistics, so that a full disk never hides them
+  if (!stats.mcap_error.empty()) {
+    std::fprintf(stderr, "sonarloop run: error: MCAP recording: %s\n", stats.mcap_error.c_str());
+  }
   if (!stats.recording_error.empty()) {
     std::fprintf(stderr, "sonarloop run: error: --record: %s\n", stats.recording_error.c_str());
   }
   if (stats_json_file) stats_json_file->write_and_close(emulator::stats_json(stats) + "\n");
-  return stats.recording_error.empty() ? 0 : 1;
+  return stats.recording_error.empty() && stats.mcap_error.empty() ? 0 : 1;
 }
 
 int run_run(const std::vector<std::string>& argv) {
@@ -159,6 +168,7 @@ int run_run(const std::vector<std::string>& argv) {
                          {"--imc-name"},
                          {"--can", true, true},
                          {"--record"},
+                         {"--mcap"},
                          {"--rate"},
                          {"--threads"},
                          {"--quiet", false},
@@ -292,7 +302,10 @@ options:
   --record DIR           write DIR/pings.xtf, DIR/nav.log (candump) and DIR/truth.csv,
                          each a whole packet / line per write (whole after any crash); on
                          a write error (a full disk) the recording stops, the run goes on,
-                         and run exits with status 1 after the statistics
+                         and run exits with status 1 after the statistics; and DIR/run.mcap
+                         for ROS 2 tools (ros2 bag, Foxglove: docs/formats.md §8)
+  --mcap FILE            write the MCAP recording there instead (without --record: that file
+                         alone); `--mcap none`: no MCAP file
   --rate R               realtime (default), max (as fast as possible, nothing dropped,
                          reproducible), or a factor X of real time (0.01..1000)
   --threads N            render threads (default: all cores)
@@ -346,6 +359,7 @@ examples:
   sonarloop run --rate max --classify out/atr.slpca --contacts out/contacts.jsonl
   sonarloop run --udp 127.0.0.1:5600 --web 8080     (then open http://127.0.0.1:8080/)
   sonarloop run --imc udp:127.0.0.1:6001 --imc-name auv-sim     (a Neptus console on this host)
+  sonarloop run --rate max --duration 60 --mcap out/run.mcap      (then: foxglove-studio, ros2 bag)
   sonarloop run --classify out/atr.slpca --web 127.0.0.1:0
 )",
     run_run, 10};

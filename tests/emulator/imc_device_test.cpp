@@ -223,8 +223,10 @@ TEST_CASE(
     }
   }
   CHECK(pings == stats.pings_sent);
-  CHECK(states == stats.nav_samples);  // every sample of the 100 ms grid carries the pose
+  // one per position sample, 100 ms apart over the 2 s run (the 250 ms samples carry none)
   CHECK(states >= 20);
+  CHECK(states <= 21);
+  CHECK(states < stats.nav_samples);
   CHECK(heartbeats >= 2);
   CHECK(announces == 1);
 }

@@ -10,6 +10,12 @@
 using namespace sonarloop;
 using namespace sonarloop::emulator;
 
+TEST_CASE("nav frames: kPositionPgnBit is 129025's bit, sampled every 100 ms") {
+  CHECK(kNavPgns[0].pgn == 129025u);
+  CHECK(kPositionPgnBit == 1u);
+  CHECK(kNavPgns[0].period_ns == 100'000'000);
+}
+
 TEST_CASE("NavSchedule: each PGN at its standard rate, one sample per instant") {
   NavSchedule s;
   std::map<std::uint32_t, int> count;

@@ -10,6 +10,8 @@
 #include <vector>
 
 #include <jpeglib.h>
+// (after jpeglib.h: the message codes, JWRN_JPEG_EOF)
+#include <jerror.h>
 
 namespace sonarloop::image {
 namespace {
@@ -21,6 +23,7 @@ struct ErrorManager {
   jpeg_error_mgr pub;
   std::jmp_buf jump;
   char message[JMSG_LENGTH_MAX];
+  bool truncated;  // the data ended before the image (libjpeg's JWRN_JPEG_EOF warning)
 };
 
 void error_exit(j_common_ptr cinfo) {
@@ -29,14 +32,23 @@ void error_exit(j_common_ptr cinfo) {
   std::longjmp(err->jump, 1);
 }
 
-// warnings (e.g. a few corrupt bytes that the decoder worked around) are not fatal
+// Warnings (e.g. a few corrupt bytes that the decoder worked around) are not fatal, and are not
+// printed; but the data ending before the image is: libjpeg then fills the missing rows with grey
+// and reports it as a warning only ("Premature end of JPEG file"), which would make half an image
+// a valid chip.
 void silent_output(j_common_ptr) {}
+void note_message(j_common_ptr cinfo, int msg_level) {
+  if (msg_level < 0 && cinfo->err->msg_code == JWRN_JPEG_EOF)
+    reinterpret_cast<ErrorManager*>(cinfo->err)->truncated = true;
+}
 
 // The library's standard error handler, with our exit and no message output.
 jpeg_error_mgr* use_error_manager(ErrorManager& err) {
   jpeg_std_error(&err.pub);
   err.pub.error_exit = error_exit;
   err.pub.output_message = silent_output;
+  err.pub.emit_message = note_message;
+  err.truncated = false;
   return &err.pub;
 }
 
@@ -126,6 +138,10 @@ Gray8 read_jpeg_gray8(const std::string& path, std::size_t max_pixels) {
                                                        max_pixels));
     }
     throw std::runtime_error("JPEG error in '" + path + "': " + err.message);
+  }
+  if (err.truncated) {
+    throw std::runtime_error("'" + path + "' is a truncated JPEG file (the data ends before the " +
+                             std::to_string(img.height) + " rows of the image)");
   }
   return img;
 }

@@ -43,7 +43,7 @@ class Bytes {
   }
   void put_string(const std::string& s) {
     put(static_cast<std::uint32_t>(s.size()));
-    out_.insert(out_.end(), s.begin(), s.end());
+    put_bytes({reinterpret_cast<const std::uint8_t*>(s.data()), s.size()});
   }
   // A record: opcode, u64 content length (patched by end_record), content.
   std::size_t begin_record(std::uint8_t op) {

@@ -20,21 +20,19 @@ class CdrWriter {
   explicit CdrWriter(std::vector<std::uint8_t>& out) : out_(out) {
     out_.clear();
     const std::uint8_t header[4] = {0x00, 0x01, 0x00, 0x00};
-    out_.insert(out_.end(), header, header + 4);
+    append(header, 4);
   }
 
   template <class T>
   void put(T v) {
     static_assert(std::is_arithmetic_v<T> && sizeof(T) <= 8);
     align(sizeof(T));
-    std::uint8_t b[sizeof(T)];
-    std::memcpy(b, &v, sizeof(T));  // little-endian hosts (x86-64, ARM64): CDR_LE as is
-    out_.insert(out_.end(), b, b + sizeof(T));
+    append(&v, sizeof(T));  // little-endian hosts (x86-64, ARM64): CDR_LE as is
   }
   void put_bool(bool v) { put<std::uint8_t>(v ? 1 : 0); }
   void put_string(std::string_view s) {
     put(static_cast<std::uint32_t>(s.size() + 1));
-    out_.insert(out_.end(), s.begin(), s.end());
+    append(s.data(), s.size());
     out_.push_back(0);
   }
   // A sequence of primitives: its count, then the elements.
@@ -43,8 +41,7 @@ class CdrWriter {
     put(static_cast<std::uint32_t>(v.size()));
     if (v.empty()) return;
     align(sizeof(T));
-    const auto* p = reinterpret_cast<const std::uint8_t*>(v.data());
-    out_.insert(out_.end(), p, p + v.size_bytes());
+    append(v.data(), v.size_bytes());
   }
   // builtin_interfaces/Time of t_ns (ns since 1970-01-01 UTC, >= 0).
   void put_time(std::int64_t t_ns) {
@@ -53,6 +50,13 @@ class CdrWriter {
   }
 
  private:
+  // (resize and copy: GCC 12 warns falsely about vector::insert of a few bytes)
+  void append(const void* p, std::size_t n) {
+    if (n == 0) return;
+    const std::size_t at = out_.size();
+    out_.resize(at + n);
+    std::memcpy(out_.data() + at, p, n);
+  }
   void align(std::size_t n) {
     const std::size_t pos = out_.size() - 4;  // from the end of the encapsulation header
     out_.resize(out_.size() + (n - pos % n) % n, 0);

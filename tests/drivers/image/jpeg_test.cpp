@@ -86,6 +86,20 @@ TEST_CASE("jpeg: errors name the file") {
   CHECK_THROWS(write_jpeg(dir.file("bad.jpg"), 2, 2, 2, std::vector<std::uint8_t>(8)));
 }
 
+TEST_CASE("jpeg: a file cut in the middle of its image data is refused, not grey-filled") {
+  sonarloop::testing::TempDir dir("jpegcut");
+  const std::vector<std::uint8_t> px = gradient(64, 64);
+  write_jpeg(dir.file("whole.jpg"), 64, 64, 1, px);
+  std::ifstream in(dir.file("whole.jpg"), std::ios::binary);
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  REQUIRE(read_jpeg_gray8(dir.file("whole.jpg")).height == 64);
+  // half the file: the header whole, the image data cut (libjpeg itself only warns)
+  std::ofstream(dir.file("half.jpg"), std::ios::binary)
+      .write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
+  CHECK_THROWS_WITH(read_jpeg_gray8(dir.file("half.jpg")),
+                    Catch::Contains("half.jpg") && Catch::Contains("truncated"));
+}
+
 TEST_CASE("jpeg: an image over the pixel limit is refused from its header") {
   sonarloop::testing::TempDir dir("jpeglimit");
   const std::vector<std::uint8_t> px = gradient(40, 24);

@@ -22,10 +22,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// dot-files, and the label images `sonarloop dataset` writes next to its chips
+// dot-files; the files operating systems leave in folders of images (Windows' thumbnail caches
+// and folder settings, the __MACOSX folder of a zip made on a Mac); and the label images
+// `sonarloop dataset` writes next to its chips
 bool hidden(const fs::path& p) {
   const std::string n = p.filename().string();
-  return (!n.empty() && n[0] == '.') || is_chip_label_file_name(n);
+  std::string lower = n;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return (!n.empty() && n[0] == '.') || lower == "thumbs.db" || lower == "ehthumbs.db" ||
+         lower == "desktop.ini" || n == "__MACOSX" || is_chip_label_file_name(n);
 }
 
 bool lower_ext_is_image(std::string ext) {
@@ -182,7 +188,7 @@ Chip read_image_chip(const fs::path& path, const std::string& source,
                      const std::optional<ChipSize>& size) {
   try {
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error("cannot open the file");
+    if (!in) throw std::runtime_error("cannot open '" + path.string() + "'");
     std::uint8_t head[8] = {};
     in.read(reinterpret_cast<char*>(head), sizeof head);
     const std::span<const std::uint8_t> got(head, static_cast<std::size_t>(in.gcount()));
@@ -196,8 +202,11 @@ Chip read_image_chip(const fs::path& path, const std::string& source,
       throw std::runtime_error("'" + path.string() +
                                "' is not a PNG or JPEG image (by its first bytes)");
     }
-    if (size) c = resample_chip(c.view(), size->width, size->height);
+    if (size && (c.width != size->width || c.height != size->height))
+      c = resample_chip(c.view(), size->width, size->height);
     return c;
+  } catch (const std::runtime_error&) {
+    throw;  // the readers' messages name the file already
   } catch (const std::exception& e) {
     throw std::runtime_error("chip '" + source + "': " + e.what());
   }
@@ -296,8 +305,8 @@ ChipFolder read_chip_folder(const std::string& root, const ChipFolderOptions& op
         const std::string rel = cls + "/" + e.path().filename().string();
         if (e.is_directory() || !is_image_name(e.path())) {
           const std::string what = e.is_directory() ? "unexpected folder '" : "unexpected file '";
-          const std::string reason =
-              what + (dir / rel).string() + "': a class folder holds only .png or .jpg chips";
+          const std::string reason = what + (dir / rel).string() +
+                                     "': a class folder holds only .png, .jpg or .jpeg chips";
           if (!options.skip_bad) throw std::runtime_error(reason);
           folder.skipped.push_back({rel, reason});
           continue;
@@ -309,7 +318,12 @@ ChipFolder read_chip_folder(const std::string& root, const ChipFolderOptions& op
         ++count;
       }
       if (count == 0) {
-        throw std::runtime_error("class folder '" + cd.string() + "' holds no .png or .jpg chips");
+        const std::string reason =
+            "class folder '" + cd.string() + "' holds no .png, .jpg or .jpeg chips";
+        if (!options.skip_bad) throw std::runtime_error(reason);
+        // skipped: the class is left out (its name listed as the source)
+        folder.skipped.push_back({cls, reason + ": the class is left out"});
+        folder.classes.pop_back();
       }
     }
   } else if (!root_images.empty()) {
@@ -326,7 +340,7 @@ ChipFolder read_chip_folder(const std::string& root, const ChipFolderOptions& op
   } else {
     throw std::runtime_error("'" + root +
                              "' holds no PNG or JPEG chips (expected one subfolder per "
-                             "class with .png or .jpg chips inside)");
+                             "class with .png, .jpg or .jpeg chips inside)");
   }
 
   // labels.csv names every chip listed, readable or not: apply it before reading pixels

@@ -14,8 +14,10 @@
 // '.' are ignored, and so are chips' label images (NAME_label.png, atr/chip_label_name.h). Inside a
 // class folder only chip images (.png, .jpg, .jpeg, any letter case) are allowed; other files or
 // nested folders are errors, as is an empty class folder, an unreadable image, or a chip of another
-// size than the rest (when require_same_size). With skip_bad, those files (all but an empty class
-// folder) are listed in ChipFolder::skipped instead, one entry each, and reading goes on. At the
+// size than the rest (when require_same_size). With skip_bad, those files are listed in
+// ChipFolder::skipped instead, one entry each, and reading goes on; an empty class folder is
+// listed too and its class left out. Files operating systems leave among images (Thumbs.db,
+// ehthumbs.db, desktop.ini, a __MACOSX folder) are ignored like dot-files. At the
 // root, files other than chip images are ignored (labels.csv is read); a root with no class
 // subfolder is read as unlabelled chips when allowed.
 //
@@ -56,8 +58,9 @@ struct ChipFolderOptions {
   bool require_classes = true;    // false: a root holding images and no subfolder is unlabelled
   bool require_same_size = true;  // false: chips may differ in size (the classifier rejects them)
   bool read_pixels = true;        // false: list the chips only (see read_folder_chip)
-  // List non-image files, nested folders, unreadable images and chips of another size than the
-  // first in ChipFolder::skipped instead of stopping with an error.
+  // List non-image files, nested folders, unreadable images, chips of another size than the
+  // first and empty class folders (their class left out) in ChipFolder::skipped instead of
+  // stopping with an error.
   bool skip_bad = false;
   std::optional<ChipSize> size;  // resample every chip to this size (area average)
 };

@@ -100,12 +100,15 @@ int run_classify(const std::vector<std::string>& argv) {
   const int aspect_bins = static_cast<int>(args.get_int("--aspect-bins", 0, 360).value_or(12));
   const bool quiet = args.has("--quiet");
   const bool skip_bad = args.has("--skip-bad-chips");
-  const std::optional<study::ChipSize> size = chip_size_option(args);
   const std::string& model_path = args.positionals()[0];
   const std::string& input = args.positionals()[1];
 
   atr::Classifier clf(load_model_with_metadata(model_path));
   const atr::Model& m = clf.model();
+  // chips of another size than the model's are resampled to it (area average), as `train
+  // --size` resampled the training chips; --size chooses another size
+  std::optional<study::ChipSize> size = chip_size_option(args);
+  if (!size) size = study::ChipSize{m.chip_width, m.chip_height};
   const bool one_file = !std::filesystem::is_directory(input);
   study::ChipFolder folder = list_input(input, skip_bad, size);
   for (const auto& s : folder.skipped)
@@ -159,8 +162,9 @@ options:
   --json FILE         per-chip predictions and the summary (confusion matrix, accuracy, CIs)
   --quiet             no per-chip lines (rejections and the summary only)
   --aspect-bins N     bins for the accuracy by aspect (default 12, 0 = off)
-  --size WxH          resample every chip to W x H pixels (area average) first, e.g. the
-                      model's size when the chips were cut at another
+  --size WxH          resample every chip to W x H pixels (area average) first (default:
+                      the model's chip size, so that chips cut at another size are
+                      resampled as `train --size` resampled the training chips)
   --skip-bad-chips    skip unreadable files, non-images and nested folders, one line each on
                       stderr, instead of stopping at the first
 

@@ -103,7 +103,24 @@ TEST_CASE("chip folder: errors name the file and say what is allowed") {
   write_chip(base / "empty" / "a" / "1.png", 8, 8, 1);
   fs::create_directories(base / "empty" / "b");
   CHECK_THROWS_WITH(read_chip_folder((base / "empty").string()),
-                    Catch::Contains("empty/b") && Catch::Contains("holds no .png"));
+                    Catch::Contains("empty/b") && Catch::Contains("holds no .png, .jpg or .jpeg"));
+  // with skip_bad the empty class is listed and left out
+  ChipFolderOptions skip;
+  skip.skip_bad = true;
+  const ChipFolder without_b = read_chip_folder((base / "empty").string(), skip);
+  CHECK(without_b.classes == std::vector<std::string>{"a"});
+  REQUIRE(without_b.skipped.size() == 1);
+  CHECK(without_b.skipped[0].source == "b");
+  CHECK_THAT(without_b.skipped[0].reason, Catch::Contains("left out"));
+
+  // what operating systems leave among images is ignored: Thumbs.db, desktop.ini, __MACOSX
+  write_chip(base / "os" / "a" / "1.png", 8, 8, 1);
+  write_text(base / "os" / "a" / "Thumbs.db", "cache");
+  write_text(base / "os" / "a" / "desktop.ini", "[.ShellClassInfo]");
+  write_chip(base / "os" / "__MACOSX" / "a" / "._1.png", 8, 8, 1);
+  const ChipFolder os = read_chip_folder((base / "os").string());
+  CHECK(os.classes == std::vector<std::string>{"a"});
+  CHECK(os.chips.size() == 1);
 
   // a file that is not a PNG chip
   write_chip(base / "txt" / "a" / "1.png", 8, 8, 1);

@@ -9,6 +9,7 @@
 #include <thread>
 #include <vector>
 
+#include "atr/imc_contacts.h"
 #include "atr/in_process_onboard.h"
 #include "atr/onboard_report.h"
 #include "drivers/xtf/xtf_codec.h"
@@ -120,19 +121,28 @@ double stats_interval_s(double print_every, const std::optional<net::HostPort>& 
 }
 
 // The onboard consumer fed from the run's pings (--classify): contacts in the scenario's frame,
-// to --contacts and the --web page.
+// to --contacts, the --web page and, with --imc, as IMC map features (atr/imc_contacts.h).
 std::unique_ptr<InProcessOnboard> make_onboard(atr::Model model, const config::Scenario& scenario,
                                                const Args& args, const emulator::Emulator& emu,
+                                               const emulator::EmulatorOptions& o,
                                                const std::vector<std::uint8_t>& file_header,
-                                               bool max_rate, std::unique_ptr<WebView>& web) {
+                                               std::unique_ptr<WebView>& web) {
   atr::OnboardOptions onboard_options;  // contacts in the scenario's frame
   onboard_options.frame_origin =
       GeoPoint{scenario.scene.origin.latitude_deg, scenario.scene.origin.longitude_deg};
-  InProcessOnboard::ContactObserver to_web;
-  if (web) to_web = [&web](const atr::Contact& c) { web->hub.push_contact(c); };
+  std::shared_ptr<atr::ImcContactSender> imc;
+  if (o.imc) imc = std::make_shared<atr::ImcContactSender>(o.imc->destination, o.imc->system);
+  InProcessOnboard::ContactObserver observer;
+  if (web || imc) {
+    // on the consumer's thread (the sender is used there only)
+    observer = [&web, imc](const atr::Contact& c) {
+      if (web) web->hub.push_contact(c);
+      if (imc) imc->send(c);
+    };
+  }
   return std::make_unique<InProcessOnboard>(std::move(model), onboard_options,
                                             args.get("--contacts"), file_header, emu.packet_bytes(),
-                                            max_rate, std::move(to_web));
+                                            o.rate.max, std::move(observer));
 }
 
 // After the run: the statistics, the onboard consumer's, the web page's, a recording error and
@@ -254,7 +264,7 @@ int run_run(const std::vector<std::string>& argv) {
   const std::vector<std::uint8_t> file_header = xtf::encode_file_header(emu.file_header());
   if (web) web->hub.push_datagram(file_header);
   if (model) {
-    onboard = make_onboard(std::move(*model), scenario, args, emu, file_header, o.rate.max, web);
+    onboard = make_onboard(std::move(*model), scenario, args, emu, o, file_header, web);
     emu.add_device(std::make_unique<OnboardDevice>(*onboard));
     if (!quiet) {
       std::fprintf(stderr, "onboard: classifying with %s, contacts to %s\n", classify->c_str(),
@@ -293,7 +303,8 @@ options:
   --udp HOST:PORT        stream the pings there (default: no stream)
   --imc udp:HOST:PORT    also speak IMC there (DUNE / Neptus; docs/formats.md §7): SonarData
                          per ping, EstimatedState at 10 Hz, Heartbeat and Announce, unicast
-                         (Neptus listens on port 6001 by default)
+                         (Neptus listens on port 6001 by default); with --classify the
+                         contacts too, as map features (as `onboard --imc`)
   --imc-system ID        the emulated vehicle's IMC address (default 0x2050)
   --imc-name NAME        its IMC system name, as a console lists it (default sonarloop)
   --can SPEC             publish navigation on SPEC; repeat for several: vcan0 (SocketCAN),

@@ -4,10 +4,12 @@
 // recording (`onboard --xtf`). Every one of the four placed targets must be reported within 1 m
 // of its true position with its class; at most kMaxFalseContacts other contacts.
 #include <signal.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <catch2/catch.hpp>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -166,13 +168,43 @@ TEST_CASE("onboard cli: the default scenario's four targets, in-process, over UD
   REQUIRE(run_logged(dir, "dataset --out " + chips + kDatasetArgs, "dataset") == 0);
   REQUIRE(run_logged(dir, "train " + chips + " --out " + model + kTrainArgs, "train") == 0);
 
-  // 1. in-process: run --classify, as fast as possible (lossless), recording the pings
+  // 1. in-process: run --classify, as fast as possible (lossless), recording the pings; with
+  // --imc the contacts also go out as IMC map features, counted by a receiver on its own thread
+  net::UdpReceiver imc_rx(net::parse_host_port("127.0.0.1:0"), 1 << 20);
+  // as root, a buffer beyond net.core.rmem_max, so that a descheduled reader loses nothing of the
+  // pings sent at --rate max (best effort: without it only a weaker check is made below)
+  const int want = 32 << 20;
+  setsockopt(imc_rx.fd(), SOL_SOCKET, SO_RCVBUFFORCE, &want, sizeof want);
+  int granted = 0;
+  socklen_t len = sizeof granted;
+  getsockopt(imc_rx.fd(), SOL_SOCKET, SO_RCVBUF, &granted, &len);
+  std::atomic<bool> imc_done{false};
+  std::atomic<int> imc_events{0}, imc_packets{0};
+  std::thread imc_thread([&] {
+    std::vector<std::uint8_t> buf(70000);
+    while (!imc_done) {
+      const auto d = imc_rx.receive(buf, 100);
+      if (!d) continue;
+      imc::Packet p;
+      if (imc::decode(std::span<const std::uint8_t>(buf.data(), d->datagram_size), p) !=
+          imc::DecodeStatus::kOk)
+        continue;
+      ++imc_packets;
+      if (std::holds_alternative<imc::CcuEvent>(p.message)) ++imc_events;
+    }
+  });
   const std::string inproc = dir.file("inproc.jsonl");
-  REQUIRE(run_logged(dir,
-                     "run " + kDefaultScenario + " --rate max --threads 2 --quiet --classify " +
-                         model + " --contacts " + inproc + " --record " + dir.file("rec") +
-                         " --stats-json " + dir.file("run_stats.json"),
-                     "run") == 0);
+  const int run_status =
+      run_logged(dir,
+                 "run " + kDefaultScenario + " --rate max --threads 2 --quiet --classify " + model +
+                     " --contacts " + inproc + " --record " + dir.file("rec") + " --stats-json " +
+                     dir.file("run_stats.json") +
+                     " --imc udp:127.0.0.1:" + std::to_string(imc_rx.bound_port()),
+                 "run");
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  imc_done = true;
+  imc_thread.join();
+  REQUIRE(run_status == 0);
   const std::string run_err = slurp(dir.file("run.err"));
   INFO(run_err);
   CHECK_THAT(run_err, Catch::Contains("onboard: ") && Catch::Contains("lost 0") &&
@@ -184,6 +216,15 @@ TEST_CASE("onboard cli: the default scenario's four targets, in-process, over UD
   for (const Contact& c : c1)
     CHECK((c.reported_ne_m - c.ne_m).norm() < 0.01);
   WARN("run --classify: " << c1.size() << " contacts, " << false1 << " false");
+  // every contact (they all have a position: the scenario's frame) as one IMC event
+  CHECK(imc_packets > imc_events);  // the pings and the navigation too
+  if (granted >= want) {
+    CHECK(imc_events == static_cast<int>(c1.size()));
+  } else {
+    WARN("receive buffer " << granted << " bytes: IMC packets may be dropped, counts not compared");
+    CHECK(imc_events > 0);
+    CHECK(imc_events <= static_cast<int>(c1.size()));
+  }
   CHECK(false1 <= kMaxFalseContacts);
 
   // 2. the recording: the same pings give the same contacts, byte for byte

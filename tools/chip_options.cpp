@@ -66,8 +66,9 @@ std::map<std::string, atr::ClassMetadata, std::less<>> sim_class_metadata() {
 }
 
 std::map<std::string, atr::ClassMetadata, std::less<>> class_metadata_options(
-    const Args& args, const std::vector<std::string>& classes) {
-  auto meta = sim_class_metadata();
+    const Args& args, const std::vector<std::string>& classes, bool simulated) {
+  std::map<std::string, atr::ClassMetadata, std::less<>> meta;
+  if (simulated) meta = sim_class_metadata();
   std::optional<std::string> mine = args.get("--mine-like");
   if (!mine && args.has("--mine-classes")) mine = args.get("--mine-classes");
   if (mine) {

@@ -31,11 +31,13 @@ std::optional<study::ChipSize> chip_size_option(const Args& args);
 // The simulator's target types as class metadata, by key.
 std::map<std::string, atr::ClassMetadata, std::less<>> sim_class_metadata();
 
-// The metadata of `classes` for training: the simulator's table, then --mine-like (or its older
-// spelling --mine-classes) and --height. Names given in the options must be among `classes`
-// (UsageError otherwise, naming them).
+// The metadata of `classes` for training: the simulator's table when the chips are the
+// simulator's (`simulated`: a folder `sonarloop dataset` wrote, with its dataset.json; a real
+// class named like a simulated type, "cylinder", takes nothing from it), then --mine-like (or its
+// older spelling --mine-classes) and --height. Names given in the options must be among
+// `classes` (UsageError otherwise, naming them).
 std::map<std::string, atr::ClassMetadata, std::less<>> class_metadata_options(
-    const Args& args, const std::vector<std::string>& classes);
+    const Args& args, const std::vector<std::string>& classes, bool simulated);
 
 // For a model read from a file of format version < 3: each class named after a simulator target
 // type gets its height. Newer models are left as they are (their heights were decided when

@@ -51,6 +51,11 @@ void write_chip_folder(const std::string& dir, const std::vector<atr::LabelledCh
   }
   OutputFile labels("--out", (root / "labels.csv").string());
   labels.write_and_close(csv);
+  // the mark of the simulator's chips: `train` then takes the target types' metadata
+  OutputFile made("--out", (root / "dataset.json").string());
+  made.write_and_close(
+      "{\"made_by\": \"sonarloop dataset --surveys\", \"classes\": \"the simulator's target "
+      "types and clutter\"}\n");
 }
 
 mission::TrainingSurveys training_surveys_of(const Args& args) {

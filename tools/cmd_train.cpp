@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <string>
@@ -112,7 +113,10 @@ int run_train(const std::vector<std::string>& argv) {
   fo.read_pixels = false;
   fo.skip_bad = opt.skip_degenerate;
   const study::ChipFolder folder = study::read_chip_folder(args.positionals()[0], fo);
-  opt.class_metadata = class_metadata_options(args, folder.classes);
+  // the simulator's class metadata only for its own chips (a dataset folder has dataset.json)
+  const bool simulated =
+      std::filesystem::exists(std::filesystem::path(folder.root) / "dataset.json");
+  opt.class_metadata = class_metadata_options(args, folder.classes, simulated);
   if (opt.aspect_sectors > 1 && folder.aspect_count < folder.chips.size()) {
     throw std::runtime_error(std::to_string(opt.aspect_sectors) +
                              " aspect sectors need an aspect angle for every "
@@ -184,10 +188,12 @@ memory holds the normalised chips once, as float (about 4 bytes a pixel), plus o
 eigen-problem.
 
 Class metadata, stored in the model: whether a class is mine-like (Section 4.1.2) and the height
-of its objects above the seabed (`sonarloop onboard` places a contact with it). Classes named
+of its objects above the seabed (`sonarloop onboard` places a contact with it). In a folder of
+the simulator's chips (one `sonarloop dataset` wrote: it has dataset.json) the classes named
 after a simulated target type take its values (manta, rockan, cylinder and cuboid are mine-like;
-heights from the target table). Any other class is not mine-like and of unknown height (onboard
-then uses the height measured from the shadow). When no class is mine-like, classify and
+heights from the target table). Any other class, and every class of real chips even when named
+like a target type, is not mine-like and of unknown height unless --mine-like and --height say
+otherwise (onboard then uses the height measured from the shadow). When no class is mine-like, classify and
 onboard make no mine / non-mine decision.
 
 options:

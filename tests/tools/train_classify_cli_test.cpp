@@ -31,13 +31,15 @@ int run_capturing(const testing::TempDir& dir, const std::string& args) {
 }
 
 // A folder of 16 x 16 PNG chips: 3 classes with a known answer, `per_class` chips each, and a
-// labels.csv with aspect angles.
+// labels.csv with aspect angles; standing in for the simulator's chips (named after its target
+// types, with a dataset folder's dataset.json, so that train takes their metadata).
 void write_chip_folder(const fs::path& root, int per_class, std::uint64_t seed) {
   const auto lc = testing::make_linear_classes(3, 16, 16, 3, 99);
   const std::vector<std::string> names = {"cylinder", "manta", "rock"};
   Rng rng(seed, RngStream::kTraining, 6);
   std::ofstream csv;
   fs::create_directories(root);
+  std::ofstream(root / "dataset.json") << "{}\n";
   csv.open(root / "labels.csv");
   csv << "file,class,aspect_deg,resolution_cm\n";
   for (int c = 0; c < 3; ++c) {
@@ -241,6 +243,36 @@ TEST_CASE("train/classify cli: usage and input errors") {
   std::ofstream(dir.file("bad.slpca")) << "hello";
   CHECK(run_capturing(dir, "classify " + dir.file("bad.slpca") + " " + train.string()) == 1);
   CHECK_THAT(slurp(dir.file("stderr.txt")), Catch::Contains("bad magic"));
+}
+
+TEST_CASE("train cli: a real class named like a simulated type takes nothing from the simulator") {
+  testing::TempDir dir("train-cli-real-names");
+  const fs::path root = dir.path() / "real";
+  const auto lc = testing::make_linear_classes(2, 16, 16, 3, 52);
+  const std::vector<std::string> names = {"cylinder", "tyre"};
+  Rng rng(9, RngStream::kTraining, 7);
+  for (int c = 0; c < 2; ++c) {
+    const fs::path d = root / names[static_cast<std::size_t>(c)];
+    fs::create_directories(d);
+    for (int i = 0; i < 8; ++i) {
+      char name[32];
+      std::snprintf(name, sizeof name, "%03d.png", i);
+      image::write_png_gray8((d / name).string(), 16, 16,
+                             testing::to_gray8(testing::sample_linear(lc, c, rng, 0.02)));
+    }
+  }
+  // real chips: "cylinder" is not the simulator's mine-like cylinder of known height
+  REQUIRE(run_capturing(dir, "train " + root.string() + " --out " + dir.file("real.slpca")) == 0);
+  atr::Model m = atr::load_model(dir.file("real.slpca"));
+  REQUIRE(m.classes[0].name == "cylinder");
+  CHECK_FALSE(m.classes[0].mine_like);
+  CHECK_FALSE(m.classes[0].height_m);
+  // the same folder marked as the simulator's (a dataset folder's dataset.json): it is
+  std::ofstream(root / "dataset.json") << "{}\n";
+  REQUIRE(run_capturing(dir, "train " + root.string() + " --out " + dir.file("sim.slpca")) == 0);
+  m = atr::load_model(dir.file("sim.slpca"));
+  CHECK(m.classes[0].mine_like);
+  CHECK(m.classes[0].height_m);
 }
 
 TEST_CASE("train/classify cli: real chips: JPEG, --size, --skip-bad-chips, class metadata") {

@@ -1,5 +1,6 @@
 #include "emulator/imc_device.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -39,6 +40,27 @@ void sonar_data_from_xtf(const xtf::XtfPing& ping, const ImcSonarInfo& sonar, im
   out.scale_factor = 1.0f;
   out.beam_config.clear();
   out.data.clear();
+  if (std::holds_alternative<std::vector<float>>(ping.channels[0].samples)) {
+    // IMC's units are integers: float samples go as 16-bit units of the ping's peak / 65535
+    // (value = unit x scale_factor)
+    float peak = 0.0f;
+    for (const xtf::XtfPingChannel& c : ping.channels)
+      for (const float v : std::get<std::vector<float>>(c.samples))
+        if (std::isfinite(v)) peak = std::max(peak, v);
+    const float scale = peak > 0.0f ? peak / 65535.0f : 1.0f;
+    out.bits_per_point = 16;
+    out.scale_factor = scale;
+    for (const xtf::XtfPingChannel& c : ping.channels) {
+      for (const float v : std::get<std::vector<float>>(c.samples)) {
+        const float u =
+            std::isfinite(v) && v > 0.0f ? std::min(65535.0f, std::round(v / scale)) : 0.0f;
+        const auto unit = static_cast<std::uint16_t>(u);
+        out.data.push_back(static_cast<std::uint8_t>(unit & 0xFF));
+        out.data.push_back(static_cast<std::uint8_t>(unit >> 8));
+      }
+    }
+    return;
+  }
   // XTF stores port far range first and starboard near range first: the line across as is
   for (const xtf::XtfPingChannel& c : ping.channels)
     std::visit([&](const auto& v) { append_le(out.data, v); }, c.samples);

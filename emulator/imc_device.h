@@ -81,7 +81,8 @@ class ImcDevice final : public Device {
 };
 
 // SonarData's sidescan line from an XTF ping of one port and one starboard channel: the samples
-// as stored (port far to near, starboard near to far), little-endian. Reuses out.data.
+// as stored (port far to near, starboard near to far), little-endian; float samples as 16-bit
+// units with the scale factor of the ping's peak. Reuses out.data.
 void sonar_data_from_xtf(const xtf::XtfPing& ping, const ImcSonarInfo& sonar, imc::SonarData& out);
 
 // EstimatedState from a navigation solution, as offsets from `origin`.

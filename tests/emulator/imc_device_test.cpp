@@ -231,6 +231,23 @@ TEST_CASE(
   CHECK(announces == 1);
 }
 
+TEST_CASE("imc device: float samples go as 16-bit units with a scale factor") {
+  xtf::XtfPing ping;
+  ping.channels.resize(2);
+  ping.channels[0].samples = std::vector<float>{0.5f, 2.0f, 0.0f};
+  ping.channels[1].samples = std::vector<float>{4.0f, 1.0f, 0.25f};
+  imc::SonarData sd;
+  sonar_data_from_xtf(ping, ImcSonarInfo{600e3, 50.0}, sd);
+  CHECK(sd.bits_per_point == 16);
+  CHECK(sd.scale_factor == Approx(4.0 / 65535.0));
+  REQUIRE(sd.data.size() == 12);
+  const std::vector<float> expected = {0.5f, 2.0f, 0.0f, 4.0f, 1.0f, 0.25f};
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    const unsigned unit = sd.data[2 * k] | (static_cast<unsigned>(sd.data[2 * k + 1]) << 8);
+    CHECK(unit * sd.scale_factor == Approx(expected[k]).margin(sd.scale_factor));
+  }
+}
+
 TEST_CASE("pose input imc:udp: an EstimatedState moves the pose; other messages are ignored") {
   using namespace pose_test;
   const LocalTangentPlane ltp(kOrigin);

@@ -5,7 +5,8 @@
 //   SonarData (276)       every ping: type sidescan, the sonar's frequency, min_range 0 and
 //                         max_range its slant range, one line across (the XTF channels' samples:
 //                         port far to near, then starboard near to far), bits_per_point from the
-//                         XTF sample size, scale_factor 1 (values are the recorder's counts);
+//                         XTF sample size, scale_factor 1 (values are the recorder's counts;
+//                         float samples: 16-bit units of the ping's peak / 65535);
 //                         time stamp the ping's time
 //   EstimatedState (350)  every navigation sample (10 Hz): the navigation solution (the same as
 //                         the NMEA 2000 frames carry) as NED offsets x, y and depth z from the

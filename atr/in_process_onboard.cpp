@@ -44,10 +44,13 @@ InProcessOnboard::~InProcessOnboard() {
 }
 
 OnboardStats InProcessOnboard::finish() {
-  queue_.close();  // pop() drains what is queued, then returns false
-  if (thread_.joinable()) thread_.join();
+  if (!finished_) {
+    finished_ = true;
+    queue_.close();  // pop() drains what is queued, then returns false
+    if (thread_.joinable()) thread_.join();
+    if (error_.empty()) pipeline_.finish();
+  }
   if (!error_.empty()) throw std::runtime_error("onboard consumer: " + error_);
-  pipeline_.finish();
   return pipeline_.stats();
 }
 

@@ -36,6 +36,7 @@ class InProcessOnboard {
   // The hook: copies the packet into the queue.
   void on_ping(std::span<const std::uint8_t> packet) { queue_.push(packet, lossless_); }
   // Drains the queue, ends the thread, decides the objects still open; returns the statistics.
+  // Called again, returns them again (the consumer's error thrown again).
   OnboardStats finish();
   const PacketQueue& queue() const { return queue_; }
   std::string contacts_destination() const { return contacts_.describe(); }
@@ -48,6 +49,7 @@ class InProcessOnboard {
   bool lossless_;
   std::thread thread_;
   std::string error_;
+  bool finished_ = false;
 };
 
 }  // namespace sonarloop::atr

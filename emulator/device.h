@@ -8,7 +8,7 @@
 //   NavCanDevice     (nav_can_device.h)    NMEA 2000 frames -> one CAN transport (--can, each)
 //   RecorderDevice   (recorder_device.h)   pings, frames and truth -> files (--record)
 //   ImcDevice        (imc_device.h)        pings and navigation -> IMC over UDP (--imc)
-//   McapDevice       (mcap_device.h)       pings, navigation, truth -> MCAP for ROS 2 (--record)
+//   McapDevice       (mcap_device.h)       pings, navigation, truth, contacts -> MCAP (--record)
 //
 // The inputs are not devices: the external pose (--pose-from) is read through
 // ExternalPoseInput (external_pose.h) by the render workers and the publisher alike.
@@ -53,6 +53,7 @@ class Device {
   // Lines for the run's set-up report.
   virtual std::vector<std::string> describe() const = 0;
   // The end of the run: flush and close (may be called again); throws std::exception on failure.
+  // Devices are closed in the reverse order of their adding: the emulator's own last.
   virtual void close();
 };
 

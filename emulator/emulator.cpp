@@ -84,12 +84,14 @@ void Emulator::Impl::start_clock() {
 }
 
 void Emulator::Impl::shutdown() {
-  // the renderers first, then the outputs, so that the recordings are complete
+  // the renderers first, then the outputs, so that the recordings are complete; the outputs in
+  // the reverse order of their adding, so that one added later (the onboard consumer of `run
+  // --classify`) can still hand its last results to one added before it (the MCAP recording)
   if (queue) queue->stop();
   std::string errors;
-  for (auto& d : devices) {
+  for (auto d = devices.rbegin(); d != devices.rend(); ++d) {
     try {
-      d->close();
+      (*d)->close();
     } catch (const std::exception& e) {
       errors += std::string(errors.empty() ? "" : "; ") + e.what();
     }
@@ -114,6 +116,13 @@ Emulator::~Emulator() {
 void Emulator::add_device(std::unique_ptr<Device> device) {
   if (!device) throw std::invalid_argument("add_device: no device");
   impl_->devices.push_back(std::move(device));
+}
+
+std::vector<Device*> Emulator::devices() const {
+  std::vector<Device*> out;
+  for (const auto& d : impl_->devices)
+    out.push_back(d.get());
+  return out;
 }
 
 RunStats Emulator::run() {

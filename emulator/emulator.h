@@ -128,6 +128,15 @@ class Emulator {
   // emulator's own devices (the UDP stream, the CAN transports, the recorder), and the periodic
   // statistics; the emulator owns it from now on. `run --classify` and `run --web` add theirs.
   void add_device(std::unique_ptr<Device> device);
+  // The devices, the emulator's own first, then those added, in order.
+  std::vector<Device*> devices() const;
+  // The first device of type D (nullptr: none), e.g. the MCAP recording to add contacts to.
+  template <class D>
+  D* find_device() const {
+    for (Device* d : devices())
+      if (auto* found = dynamic_cast<D*>(d)) return found;
+    return nullptr;
+  }
 
   // Runs to the end of the duration or until stopped; returns the final statistics.
   RunStats run();

@@ -110,6 +110,7 @@ void McapDevice::ping(const PingSlot& slot, std::span<const std::uint8_t>) {
   if (slot.xtf.channels.size() != 2) return;
   guarded([&] {
     const std::int64_t t = slot.truth.time_utc_ns;
+    last_ping_utc_ns_ = t;
     const auto stamp = static_cast<std::uint64_t>(t);
     for (int side = 0; side < 2; ++side) {
       ros2::RawSonarImage m;
@@ -208,17 +209,22 @@ void McapDevice::write_pose(std::uint16_t channel, std::int64_t utc_ns, double n
   writer_->write(channel, seq_++, stamp, stamp, buffer_);
 }
 
+void McapDevice::write_fix(std::uint16_t channel, std::int64_t utc_ns, double north_m,
+                           double east_m, double altitude_m) {
+  const GeoPoint g = origin_.to_geodetic(north_m, east_m);
+  ros2::NavSatFix fix;
+  fix.header = {utc_ns, "map"};
+  fix.latitude_deg = g.latitude_deg;
+  fix.longitude_deg = g.longitude_deg;
+  fix.altitude_m = altitude_m;
+  ros2::encode(fix, buffer_);
+  const auto stamp = static_cast<std::uint64_t>(utc_ns);
+  writer_->write(channel, seq_++, stamp, stamp, buffer_);
+}
+
 void McapDevice::nav_solution(const vehicle::NavSolution& s, std::int64_t utc_ns) {
   guarded([&] {
-    const GeoPoint g = origin_.to_geodetic(s.north_m, s.east_m);
-    ros2::NavSatFix fix;
-    fix.header = {utc_ns, "map"};
-    fix.latitude_deg = g.latitude_deg;
-    fix.longitude_deg = g.longitude_deg;
-    fix.altitude_m = -s.depth_m;
-    ros2::encode(fix, buffer_);
-    const auto stamp = static_cast<std::uint64_t>(utc_ns);
-    writer_->write(fix_, seq_++, stamp, stamp, buffer_);
+    write_fix(fix_, utc_ns, s.north_m, s.east_m, -s.depth_m);
     write_pose(nav_pose_, utc_ns, s.north_m, s.east_m, s.depth_m, s.heading, s.pitch, s.roll);
   });
 }
@@ -232,9 +238,50 @@ std::vector<std::string> McapDevice::describe() const {
   return {writer_->path() + ": MCAP for ROS 2 (sidescan, waterfall image, navigation, truth)"};
 }
 
+void McapDevice::record_contacts() {
+  if (record_contacts_) return;
+  record_contacts_ = true;
+  const auto schema = [&](const ros2::MessageSchema& s) {
+    return writer_->add_schema(
+        s.name, "ros2msg",
+        {reinterpret_cast<const std::uint8_t*>(s.definition.data()), s.definition.size()});
+  };
+  contacts_ = writer_->add_channel(schema(ros2::string_schema()), "/contacts", "cdr");
+  contact_fix_ = writer_->add_channel(schema(ros2::nav_sat_fix_schema()), "/contacts/fix", "cdr");
+}
+
+void McapDevice::add_contact(McapContact contact) {
+  if (!record_contacts_) throw std::logic_error("McapDevice::add_contact before record_contacts");
+  const std::lock_guard lock(contacts_mutex_);
+  pending_.push_back(std::move(contact));
+}
+
+void McapDevice::write_contacts() {
+  std::vector<McapContact> contacts;
+  {
+    const std::lock_guard lock(contacts_mutex_);
+    contacts.swap(pending_);
+  }
+  for (McapContact& c : contacts)
+    if (!c.time_utc_ns) c.time_utc_ns = last_ping_utc_ns_;
+  std::stable_sort(contacts.begin(), contacts.end(), [](const auto& a, const auto& b) {
+    return std::pair(*a.time_utc_ns, a.id) < std::pair(*b.time_utc_ns, b.id);
+  });
+  for (const McapContact& c : contacts) {
+    const std::int64_t t = *c.time_utc_ns;
+    const auto stamp = static_cast<std::uint64_t>(t);
+    ros2::encode_string(c.json, buffer_);
+    writer_->write(contacts_, seq_++, stamp, stamp, buffer_);
+    write_fix(contact_fix_, t, c.north_m, c.east_m, std::numeric_limits<double>::quiet_NaN());
+  }
+}
+
 void McapDevice::close() {
   if (!writer_) return;
-  guarded([&] { writer_->close(); });
+  guarded([&] {
+    if (record_contacts_) write_contacts();
+    writer_->close();
+  });
 }
 
 }  // namespace sonarloop::emulator

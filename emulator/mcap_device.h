@@ -22,9 +22,19 @@
 //                                         forward-left-up)
 //   /truth/pose                           geometry_msgs/msg/PoseStamped, every ping: the true pose
 //                                         it was rendered from, in "map"
+//   /contacts                             std_msgs/msg/String (with record_contacts(): `run
+//                                         --classify`): each contact's JSON line as the contacts
+//                                         file holds it (docs/formats.md §6)
+//   /contacts/fix                         sensor_msgs/msg/NavSatFix, the same contact's position
+//                                         (altitude NaN: unknown), for a map panel
+// The contacts are kept and written at close(), ordered by (time, id), with the log time of
+// the ping they were detected on: the consumer's thread reports them when it gets there, and
+// the file is the same bytes whatever that timing.
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,6 +59,15 @@ struct McapSonarInfo {
 // sim/frames.h) as ROS's ENU world and forward-left-up body see it (REP 103).
 std::array<double, 4> enu_flu_quaternion(double yaw, double pitch, double roll);
 
+// A contact as the MCAP recording keeps it (what the onboard layer reports; this layer does not
+// know its type).
+struct McapContact {
+  std::optional<std::int64_t> time_utc_ns;  // the ping's; none: recorded at the last ping's
+  std::uint64_t id = 0;
+  double north_m = 0.0, east_m = 0.0;  // in the scenario's frame
+  std::string json;                    // one line, without its newline
+};
+
 class McapDevice final : public Device {
  public:
   // Creates `path` (std::runtime_error naming it when it cannot). `origin`: the scenario's.
@@ -62,12 +81,20 @@ class McapDevice final : public Device {
   std::vector<std::string> describe() const override;
   void close() override;
 
+  // Adds the /contacts channels (before run(); `run --classify`).
+  void record_contacts();
+  // One contact, from any thread (needs record_contacts()); written at close().
+  void add_contact(McapContact contact);
+
  private:
   // Runs `write`; the first write error stops the recording (said once, counted in the stats).
   template <class F>
   void guarded(F&& write);
   void waterfall_row(const xtf::XtfPing& ping);
   void write_waterfall(std::int64_t utc_ns);
+  void write_fix(std::uint16_t channel, std::int64_t utc_ns, double north_m, double east_m,
+                 double altitude_m);
+  void write_contacts();
   void write_pose(std::uint16_t channel, std::int64_t utc_ns, double north_m, double east_m,
                   double depth_m, double yaw, double pitch, double roll);
 
@@ -82,6 +109,11 @@ class McapDevice final : public Device {
   std::vector<std::uint8_t> rows_, image_;
   int rows_filled_ = 0, next_row_ = 0, pings_ = 0;
   std::string error_;
+  std::int64_t last_ping_utc_ns_ = 0;
+  std::uint16_t contacts_ = 0, contact_fix_ = 0;
+  bool record_contacts_ = false;
+  std::mutex contacts_mutex_;
+  std::vector<McapContact> pending_;
 };
 
 }  // namespace sonarloop::emulator

@@ -1,6 +1,7 @@
 #pragma once
 // `run --classify`: the in-process onboard consumer (atr/in_process_onboard.h) as one of the
 // emulator's devices (emulator/device.h), where the simulator meets the onboard side.
+#include <exception>
 #include <span>
 #include <string>
 #include <vector>
@@ -21,6 +22,15 @@ class OnboardDevice final : public emulator::Device {
   }
   bool on_wire() const override { return true; }
   std::vector<std::string> describe() const override { return {}; }  // said by run itself
+  // The consumer's last decisions, while the devices added before it (the MCAP recording) are
+  // still open (devices close in reverse order). An error is reported by run, which calls
+  // finish() again.
+  void close() override {
+    try {
+      onboard_.finish();
+    } catch (const std::exception&) {
+    }
+  }
 
  private:
   atr::InProcessOnboard& onboard_;

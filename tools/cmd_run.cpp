@@ -9,11 +9,13 @@
 #include <thread>
 #include <vector>
 
+#include "atr/contact.h"
 #include "atr/imc_contacts.h"
 #include "atr/in_process_onboard.h"
 #include "atr/onboard_report.h"
 #include "drivers/xtf/xtf_codec.h"
 #include "emulator/emulator.h"
+#include "emulator/mcap_device.h"
 #include "emulator/pacer.h"
 #include "emulator/realtime_priority.h"
 #include "emulator/run_report.h"
@@ -121,7 +123,8 @@ double stats_interval_s(double print_every, const std::optional<net::HostPort>& 
 }
 
 // The onboard consumer fed from the run's pings (--classify): contacts in the scenario's frame,
-// to --contacts, the --web page and, with --imc, as IMC map features (atr/imc_contacts.h).
+// to --contacts, the --web page, the MCAP recording (/contacts) and, with --imc, as IMC map
+// features (atr/imc_contacts.h).
 std::unique_ptr<InProcessOnboard> make_onboard(atr::Model model, const config::Scenario& scenario,
                                                const Args& args, const emulator::Emulator& emu,
                                                const emulator::EmulatorOptions& o,
@@ -132,12 +135,15 @@ std::unique_ptr<InProcessOnboard> make_onboard(atr::Model model, const config::S
       GeoPoint{scenario.scene.origin.latitude_deg, scenario.scene.origin.longitude_deg};
   std::shared_ptr<atr::ImcContactSender> imc;
   if (o.imc) imc = std::make_shared<atr::ImcContactSender>(o.imc->destination, o.imc->system);
+  emulator::McapDevice* mcap = emu.find_device<emulator::McapDevice>();
+  if (mcap) mcap->record_contacts();
   InProcessOnboard::ContactObserver observer;
-  if (web || imc) {
-    // on the consumer's thread (the sender is used there only)
-    observer = [&web, imc](const atr::Contact& c) {
+  if (web || imc || mcap) {
+    // on the consumer's thread (the sender is used there only), or in finish()
+    observer = [&web, imc, mcap](const atr::Contact& c) {
       if (web) web->hub.push_contact(c);
       if (imc) imc->send(c);
+      if (mcap) mcap->add_contact({c.time_utc_ns, c.id, c.north_m, c.east_m, atr::contact_json(c)});
     };
   }
   return std::make_unique<InProcessOnboard>(std::move(model), onboard_options,
@@ -314,7 +320,8 @@ options:
                          each a whole packet / line per write (whole after any crash); on
                          a write error (a full disk) the recording stops, the run goes on,
                          and run exits with status 1 after the statistics; and DIR/run.mcap
-                         for ROS 2 tools (ros2 bag, Foxglove: docs/formats.md §8)
+                         for ROS 2 tools (ros2 bag, Foxglove: docs/formats.md §8), with
+                         --classify the contacts too (/contacts, written at the end)
   --mcap FILE            write the MCAP recording there instead (without --record: that file
                          alone); `--mcap none`: no MCAP file
   --rate R               realtime (default), max (as fast as possible, nothing dropped,

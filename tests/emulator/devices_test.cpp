@@ -1,14 +1,20 @@
 // The emulator's output devices (emulator/device.h) on their own: the sonar's UDP stream (the
 // file header first and again after kHeaderRepeatS of simulation time, one datagram per ping,
 // its counters) over a real socket on 127.0.0.1; the navigation bus on a candump log; the
-// recorder's files and counters. Which device is on the wire decides what the publisher times.
+// recorder's files and counters; the MCAP recording's contacts. Which device is on the wire
+// decides what the publisher times.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <fstream>
+#include <optional>
 #include <sstream>
+#include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "drivers/net/udp_receiver.h"
 #include "emulator/emulator.h"
+#include "emulator/mcap_device.h"
 #include "emulator/nav_can_device.h"
 #include "emulator/recorder_device.h"
 #include "emulator/sonar_udp_device.h"
@@ -111,4 +117,45 @@ TEST_CASE("recorder device: not on the wire; its files and counters") {
   CHECK(std::filesystem::exists(dir.path() / "nav.log"));
   CHECK(std::filesystem::file_size(dir.path() / "nav.log") > 0);
   CHECK_THAT(rec.describe()[0], Catch::Contains("pings.xtf"));
+}
+
+TEST_CASE("MCAP device: contacts from any thread, written at close by time and id") {
+  testing::TempDir dir("devices_mcap");
+  mcap::WriterOptions plain;
+  plain.compress = false;  // so that the messages' bytes can be found in the file
+  McapDevice mcap(dir.file("r.mcap"), LocalTangentPlane(GeoPoint{55.9, -3.2}), McapSonarInfo{},
+                  plain);
+  CHECK_FALSE(mcap.on_wire());
+  CHECK_THROWS_AS(mcap.add_contact({}), std::logic_error);  // not before record_contacts()
+  mcap.record_contacts();
+  // given out of order, two threads at once; one without a time (recorded at the last ping's,
+  // here none: 0)
+  std::thread a([&] {
+    mcap.add_contact({3'000, 5, 1.0, 2.0, "{\"c\":\"t3-id5\"}"});
+    mcap.add_contact({1'000, 9, 1.0, 2.0, "{\"c\":\"t1-id9\"}"});
+  });
+  std::thread b([&] {
+    mcap.add_contact({3'000, 2, 1.0, 2.0, "{\"c\":\"t3-id2\"}"});
+    mcap.add_contact({std::nullopt, 7, 1.0, 2.0, "{\"c\":\"none-id7\"}"});
+  });
+  a.join();
+  b.join();
+  mcap.close();
+  mcap.close();  // again: nothing more
+  RunStats stats;
+  mcap.add_stats(stats);
+  CHECK(stats.mcap_error.empty());
+  CHECK(stats.mcap_messages == 8);  // a string and a fix each
+  const std::string file = testing::slurp(dir.file("r.mcap"));
+  CHECK_THAT(file, Catch::Contains("/contacts/fix") && Catch::Contains("std_msgs/msg/String"));
+  std::vector<std::size_t> at;
+  for (const char* c : {"none-id7", "t1-id9", "t3-id2", "t3-id5"}) {
+    INFO(c);
+    // once each, in the summary-free data section
+    const std::size_t p = file.find(c);
+    REQUIRE(p != std::string::npos);
+    CHECK(file.find(c, p + 1) == std::string::npos);
+    at.push_back(p);
+  }
+  CHECK(std::is_sorted(at.begin(), at.end()));
 }

@@ -9,7 +9,9 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <thread>
 #include <utility>
@@ -25,6 +27,7 @@
 #include "drivers/xtf/xtf_codec.h"
 #include "drivers/xtf/xtf_file.h"
 #include "emulator/emulator.h"
+#include "emulator/mcap_device.h"
 #include "sim/vehicle/nav_sensor.h"
 #include "sim/vehicle/trajectory.h"
 #include "tests/emulator/test_scenario.h"
@@ -458,4 +461,61 @@ TEST_CASE("emulator --pose-from: a source of absurd poses stalls the pings; they
   REQUIRE(file.pings.size() == s.pings_sent);
   for (const auto& p : file.pings)
     CHECK(p.header.sensor_depth_m == Approx(12.0f));
+}
+
+namespace {
+
+// A device of the caller's that notes when it is closed.
+class ClosingDevice final : public Device {
+ public:
+  ClosingDevice(std::vector<std::string>& closed, std::string name)
+      : closed_(closed), name_(std::move(name)) {}
+  bool on_wire() const override { return false; }
+  std::vector<std::string> describe() const override { return {}; }
+  void close() override { closed_.push_back(name_); }
+
+ private:
+  std::vector<std::string>& closed_;
+  std::string name_;
+};
+
+}  // namespace
+
+TEST_CASE("emulator: devices close in the reverse order of their adding; find_device") {
+  testing::TempDir dir("emu-close-order");
+  EmulatorOptions o;
+  o.rate = parse_rate("max");
+  o.duration_s = 0.5;
+  o.mcap_path = dir.file("plain.mcap");
+  o.stats_interval_s = 0;
+  MonotonicClock clock;
+  EmulatorHooks hooks;
+  hooks.message = [](std::string_view) {};
+  // the same run without contacts: its message count
+  const std::uint64_t plain = Emulator(small_scenario(), o, clock, hooks).run().mcap_messages;
+  REQUIRE(plain > 0);
+  o.mcap_path = dir.file("r.mcap");
+  std::vector<std::string> closed;
+  Emulator emu(small_scenario(), o, clock, hooks);
+  CHECK(emu.find_device<ClosingDevice>() == nullptr);
+  REQUIRE(emu.find_device<McapDevice>() != nullptr);
+  emu.add_device(std::make_unique<ClosingDevice>(closed, "first"));
+  emu.add_device(std::make_unique<ClosingDevice>(closed, "second"));
+  CHECK(emu.find_device<ClosingDevice>() == emu.devices()[emu.devices().size() - 2]);
+  // the MCAP recording (the emulator's own) is still open when the added devices close: a
+  // contact given then is in the file (a string and a fix)
+  McapDevice* mcap = emu.find_device<McapDevice>();
+  mcap->record_contacts();
+  struct Feeder final : Device {
+    McapDevice* mcap;
+    explicit Feeder(McapDevice* m) : mcap(m) {}
+    bool on_wire() const override { return false; }
+    std::vector<std::string> describe() const override { return {}; }
+    void close() override { mcap->add_contact({std::nullopt, 1, 0.0, 0.0, "{\"late\":1}"}); }
+  };
+  emu.add_device(std::make_unique<Feeder>(mcap));
+  const RunStats stats = emu.run();
+  CHECK(closed == std::vector<std::string>{"second", "first"});
+  CHECK(stats.mcap_error.empty());
+  CHECK(stats.mcap_messages == plain + 2);
 }

@@ -20,6 +20,7 @@
 #include "tests/emulator/test_scenario.h"
 #include "tests/support/skip.h"
 #include "tests/support/temp_dir.h"
+#include "tests/tools/mcap_reader.h"
 #include "tests/tools/sonarloop_cli.h"
 
 using namespace sonarloop;
@@ -28,28 +29,6 @@ using testing::run_command;
 using testing::slurp;
 
 namespace {
-
-const std::string kNpmDir = std::string(SONARLOOP_BINARY_DIR) + "/npm-mcap";
-
-// The reader's packages, installed once per build tree; the reason when they cannot be.
-std::string prepare_reader() {
-  if (run_command("node --version > /dev/null 2>&1") != 0) return "node is not installed";
-  if (run_command("npm --version > /dev/null 2>&1") != 0) return "npm is not installed";
-  if (!std::filesystem::exists(kNpmDir + "/node_modules/@foxglove/rosmsg2-serialization")) {
-    std::filesystem::create_directories(kNpmDir);
-    const std::string log = kNpmDir + "/install.log";
-    if (run_command("cd " + kNpmDir +
-                    " && npm install --no-audit --no-fund --loglevel=error @mcap/core@2 "
-                    "@mcap/support@1 @foxglove/rosmsg@5 @foxglove/rosmsg2-serialization@3 > " +
-                    log + " 2>&1") != 0) {
-      return "npm install of the MCAP reader failed (no npm registry?): " + slurp(log);
-    }
-  }
-  std::filesystem::copy_file(std::string(SONARLOOP_SOURCE_DIR) + "/tests/tools/mcap_read.mjs",
-                             kNpmDir + "/mcap_read.mjs",
-                             std::filesystem::copy_options::overwrite_existing);
-  return "";
-}
 
 std::vector<JsonLine> read_lines(const std::string& path) {
   std::vector<JsonLine> out;
@@ -79,14 +58,14 @@ void near_to_far(const xtf::XtfPingChannel& c, bool port, double& sum, double& f
 
 TEST_CASE("run --record: run.mcap as @mcap/core reads it equals pings.xtf and nav.log",
           "[may_skip]") {
-  if (const std::string why = prepare_reader(); !why.empty()) testing::skip_test(why);
+  if (const std::string why = testing::prepare_mcap_reader(); !why.empty()) testing::skip_test(why);
   testing::TempDir dir("mcap_cli");
   { std::ofstream(dir.file("s.yaml")) << testing::small_scenario_yaml(); }
   REQUIRE(run_command(testing::kBinary + " run " + dir.file("s.yaml") +
                       " --rate max --duration 4 --epoch 1767225600 --quiet --record " +
                       dir.file("rec") + " 2> " + dir.file("run.err")) == 0);
-  REQUIRE(run_command("node " + kNpmDir + "/mcap_read.mjs " + dir.file("rec/run.mcap") + " > " +
-                      dir.file("read.jsonl") + " 2> " + dir.file("read.err")) == 0);
+  REQUIRE(testing::read_mcap(dir.file("rec/run.mcap"), dir.file("read.jsonl"),
+                             dir.file("read.err")) == 0);
   INFO(slurp(dir.file("read.err")));
   const std::vector<JsonLine> lines = read_lines(dir.file("read.jsonl"));
   REQUIRE(!lines.empty());
@@ -139,7 +118,7 @@ TEST_CASE("run --record: run.mcap as @mcap/core reads it equals pings.xtf and na
       const double t = std::stod(*l.string("log_time")) * 1e-9;
       CHECK(t ==
             Approx(static_cast<double>(*xtf::time_utc_ns(pings[k].header)) * 1e-9).margin(0.011));
-    } else if (kind == "fix") {
+    } else if (kind == "fix" && topic == "/nav/fix") {
       fix_lat.push_back(*l.number("latitude"));
       fix_lon.push_back(*l.number("longitude"));
     } else if (kind == "image") {

@@ -82,6 +82,8 @@ for await (const m of reader.readMessages()) {
   } else if (type === "sensor_msgs/msg/Image") {
     lines.push({ ...base, kind: "image", height: msg.height, width: msg.width, encoding: msg.encoding,
       step: msg.step, bytes: msg.data.byteLength });
+  } else if (type === "std_msgs/msg/String") {
+    lines.push({ ...base, kind: "string", data: msg.data });
   } else {
     lines.push({ ...base, kind: "other", type });
   }

@@ -9,6 +9,7 @@
 #include <unistd.h>
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -21,12 +22,14 @@
 #include <thread>
 #include <vector>
 
+#include "autonomy/json_line.h"
 #include "common/geodesy.h"
 #include "config/loader/scenario_loader.h"
 #include "drivers/imc/imc_codec.h"
 #include "drivers/net/udp_receiver.h"
 #include "sim/targets/target_type.h"
 #include "tests/support/temp_dir.h"
+#include "tests/tools/mcap_reader.h"
 #include "tests/tools/sonarloop_cli.h"
 
 using namespace sonarloop;
@@ -226,6 +229,39 @@ TEST_CASE("onboard cli: the default scenario's four targets, in-process, over UD
     CHECK(imc_events <= static_cast<int>(c1.size()));
   }
   CHECK(false1 <= kMaxFalseContacts);
+  // the MCAP recording (rec/run.mcap) holds every contact, as the contacts file has it, on
+  // /contacts, with its position on /contacts/fix, read by the independent reader (left out,
+  // with the reason, where node or the npm registry is missing)
+  if (const std::string why = testing::prepare_mcap_reader(); why.empty()) {
+    REQUIRE(testing::read_mcap(dir.file("rec/run.mcap"), dir.file("mcap.jsonl"),
+                               dir.file("mcap.err")) == 0);
+    std::vector<std::string> recorded;
+    std::size_t fixes = 0;
+    std::ifstream in(dir.file("mcap.jsonl"));
+    std::string line, error;
+    while (std::getline(in, line)) {
+      const auto j = autonomy::JsonLine::parse(line, error);
+      REQUIRE(j);
+      if (j->string("topic") == "/contacts") recorded.push_back(*j->string("data"));
+      if (j->string("topic") == "/contacts/fix") {
+        ++fixes;
+        // at a contact's north_m / east_m
+        const Vec2 ne = plane.to_local(GeoPoint{*j->number("latitude"), *j->number("longitude")});
+        CHECK(std::any_of(c1.begin(), c1.end(),
+                          [&](const Contact& c) { return (ne - c.reported_ne_m).norm() < 0.01; }));
+      }
+    }
+    std::vector<std::string> written;
+    std::ifstream contacts(inproc);
+    while (std::getline(contacts, line))
+      written.push_back(line);
+    std::sort(recorded.begin(), recorded.end());
+    std::sort(written.begin(), written.end());
+    CHECK(recorded == written);
+    CHECK(fixes == c1.size());
+  } else {
+    WARN("run.mcap's contacts not read: " << why);
+  }
 
   // 2. the recording: the same pings give the same contacts, byte for byte
   const std::string from_file = dir.file("file.jsonl");

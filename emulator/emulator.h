@@ -83,6 +83,8 @@ struct EmulatorOptions {
   double stats_interval_s = 5.0;  // live statistics every this many wall seconds (0: never)
   render::RendererKind renderer = render::RendererKind::kProfile;  // --renderer
   int ring_slots = 16;                                             // render-ahead depth (pings)
+  // what the seabed's tile caches may hold (--memory-budget; seabed_model.h)
+  std::size_t seabed_cache_bytes = seabed::kDefaultSeabedCacheBytes;
   int udp_send_buffer_bytes = 1 << 20;
   // a ping sent more than this after its send time is a deadline miss (--lateness-tolerance-ms)
   double deadline_tolerance_s = static_cast<double>(kDefaultDeadlineToleranceNs) * 1e-9;

@@ -68,7 +68,9 @@ int max_udp_samples_per_side(int bytes_per_sample) {
 void Emulator::Impl::configure() {
   construct_ns = clock.now_ns();
   validate_options();
-  scene = std::make_unique<scene::Scene>(scenario.scene);
+  seabed::SeabedOptions seabed_options;
+  seabed_options.cache_bytes = options.seabed_cache_bytes;
+  scene = std::make_unique<scene::Scene>(scenario.scene, seabed_options);
   setup = render::make_sonar_setup(scenario.sonar, scenario.scene.water);
   check_fits_datagram();
   renderer = render::make_ping_renderer(options.renderer, setup);

@@ -30,6 +30,7 @@ void Emulator::Impl::update_stats(std::int64_t now) {
                                               : 0.0;
   stats.render_max_ms = static_cast<double>(queue->produce_max_ns()) * 1e-6;
   stats.tiles_made = scene->seabed().tiles_made();
+  stats.seabed_cache = scene->seabed().cache_stats();
   for (const auto& d : devices)
     d->add_stats(stats);
   if (pose_source) {

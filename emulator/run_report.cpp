@@ -92,6 +92,17 @@ void print_run_summary(const emulator::RunStats& s, const char* how) {
                "tiles made\n",
                static_cast<unsigned long long>(s.pings_rendered), s.render_mean_ms, s.render_max_ms,
                s.threads, static_cast<unsigned long long>(s.tiles_made));
+  const seabed::SeabedCacheStats& c = s.seabed_cache;
+  const auto percent = [](const seabed::TileCacheCounters& k) {
+    const std::uint64_t asked = k.hits + k.misses;
+    return asked ? 100.0 * static_cast<double>(k.hits) / static_cast<double>(asked) : 100.0;
+  };
+  std::fprintf(stderr,
+               "  seabed caches: heightmap %.1f %% hits, noise %.1f %% hits; %.0f of %.0f MB "
+               "held; %llu tiles evicted\n",
+               percent(c.heightmap), percent(c.noise), static_cast<double>(c.bytes) / 1048576.0,
+               static_cast<double>(c.budget_bytes) / 1048576.0,
+               static_cast<unsigned long long>(c.heightmap.evictions + c.noise.evictions));
   std::fprintf(stderr, "  cpu: %.1f %% of one core (%.2f s); start-up %.2f s\n", s.cpu_percent(),
                s.cpu_time_s, s.startup_s);
 }

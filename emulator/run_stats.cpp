@@ -185,6 +185,14 @@ std::string stats_json(const RunStats& s) {
   if (s.mcap_messages || !s.mcap_error.empty()) w.field("mcap_messages", s.mcap_messages);
   w.key("scene").begin_object();
   w.field("tiles_made", s.tiles_made);
+  const seabed::SeabedCacheStats& c = s.seabed_cache;
+  w.key("cache").begin_object();
+  w.field("heightmap_hits", c.heightmap.hits).field("heightmap_misses", c.heightmap.misses);
+  w.field("noise_hits", c.noise.hits).field("noise_misses", c.noise.misses);
+  w.field("evictions", c.heightmap.evictions + c.noise.evictions);
+  w.field("bytes", static_cast<std::uint64_t>(c.bytes));
+  w.field("budget_bytes", static_cast<std::uint64_t>(c.budget_bytes));
+  w.end_object();
   w.end_object();
   w.end_object();
   return w.str();

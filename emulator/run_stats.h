@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <string>
 
+#include "sim/seabed/tile_cache.h"
+
 namespace sonarloop::emulator {
 
 class LatencyHistogram {
@@ -117,8 +119,9 @@ struct RunStats {
   std::uint64_t pings_rendered = 0;
   double render_mean_ms = 0.0;
   double render_max_ms = 0.0;
-  std::uint64_t tiles_made = 0;  // heightmap tiles the seabed made (all detail levels)
-  double startup_s = 0.0;        // scene, first view and outputs, before t = 0
+  std::uint64_t tiles_made = 0;           // heightmap tiles the seabed made (all detail levels)
+  seabed::SeabedCacheStats seabed_cache;  // its tile caches: hits, misses, bytes, budget
+  double startup_s = 0.0;                 // scene, first view and outputs, before t = 0
 
   // deadline misses: late + dropped
   std::uint64_t deadline_misses() const { return pings_late + pings_dropped; }

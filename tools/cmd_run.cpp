@@ -94,6 +94,9 @@ emulator::EmulatorOptions emulator_options(const Args& args) {
   if (o.imc && o.pose_from && o.pose_from->rfind("imc:udp:", 0) == 0)
     o.imc->services = "imc+udp://" + o.pose_from->substr(8) + "/";
   o.renderer = renderer_option(args);
+  if (const auto mb = args.get_double("--memory-budget", 16.0, 1e6)) {
+    o.seabed_cache_bytes = static_cast<std::size_t>(*mb * 1048576.0);
+  }
   o.stale_after_s = args.get_double("--stale-after", 1e-3, 3600.0).value_or(2.0);
   o.pose_delay_s = args.get_double("--pose-delay", 0.0, 3600.0).value_or(o.pose_delay_s);
   if ((args.has("--stale-after") || args.has("--pose-delay")) && !o.pose_from) {
@@ -198,6 +201,7 @@ int run_run(const std::vector<std::string>& argv) {
                          {"--contacts"},
                          {"--gate-threshold"},
                          {"--renderer"},
+                         {"--memory-budget"},
                          {"--web"},
                          {"--lateness-tolerance-ms"},
                          {"--realtime-priority"}});
@@ -327,6 +331,10 @@ options:
   --rate R               realtime (default), max (as fast as possible, nothing dropped,
                          reproducible), or a factor X of real time (0.01..1000)
   --threads N            render threads (default: all cores)
+  --memory-budget MB     what the seabed's tile caches may hold (default 256, at least 16):
+                         most of run's memory, which otherwise stays under about 100 MB.
+                         Tiles beyond it are evicted and made again when the vehicle
+                         comes back; the summary gives the caches' hit rates
   --quiet                no start-up lines or live statistics (warnings and the final
                          summary are still printed)
   --stats-every S        live statistics interval in wall seconds (default 5; 0 = none)

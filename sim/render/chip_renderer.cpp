@@ -35,9 +35,10 @@ constexpr double kMaxResolution_m = 1.0;
 // Heightmap tiles of the shared seabeds: 64 points (1.6 m at 2.5 cm) instead of the scene
 // default 256, because a chip's view covers a few metres: a small tile wastes less terrain
 // synthesis at the view's edges. A tile is a pure function of its lattice points, so the tile
-// size changes no height. 512 tiles of 64² points are about 10 MB per seabed.
+// size changes no height. The caches of each seabed hold up to 64 MB: its noise layers 4 MB
+// each, the heightmap tiles (20 kB each) the rest (seabed_model.h).
 constexpr int kSeabedTileSize = 64;
-constexpr std::size_t kSeabedCacheTiles = 512;
+constexpr std::size_t kSeabedCacheBytes = 64u << 20;
 
 // Level of a bin with no echo at all (no noise, no seabed): below any span.
 constexpr double kNoEchoDb = -300.0;
@@ -250,7 +251,7 @@ ChipRenderer::ChipRenderer(ChipDatasetSpec spec) : spec_(std::move(spec)) {
   }
   seabed::SeabedOptions options;
   options.tile_size = kSeabedTileSize;
-  options.cache_tiles = kSeabedCacheTiles;
+  options.cache_bytes = kSeabedCacheBytes;
   for (const DatasetSeabed& s : spec_.seabeds) {
     auto k = std::make_unique<Kind>();
     k->desc = s.desc;

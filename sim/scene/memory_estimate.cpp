@@ -38,20 +38,20 @@ double least_target_bytes(std::size_t count) {
 }
 
 MemoryEstimate estimate_memory(const SceneDesc& scene, const PingFan& fan, int tile_size,
-                               std::size_t cache_tiles) {
+                               std::size_t cache_bytes) {
   MemoryEstimate e;
   std::map<std::pair<int, int>, std::size_t> known;
   for (const TargetDesc& t : scene.targets) {
     e.targets_bytes +=
         static_cast<double>(triangles_of(t, known)) * kTargetBytesPerTriangle + kTargetFixedBytes;
   }
-  // level-0 tiles over the extent, at most the cache's capacity (in double: a 100 km extent at
+  // level-0 tiles over the extent, at most the caches' budget (in double: a 100 km extent at
   // 5 mm is 4e8 tiles)
   const double tile_m = scene.seabed.grid_spacing_m * tile_size;
   const double tiles =
       std::ceil(scene.seabed.extent_m.x() / tile_m) * std::ceil(scene.seabed.extent_m.y() / tile_m);
-  e.tiles_bytes = std::min(tiles, static_cast<double>(cache_tiles)) * tile_size * tile_size *
-                  kBytesPerTilePoint;
+  e.tiles_bytes = std::min(tiles * tile_size * tile_size * kBytesPerTilePoint,
+                           static_cast<double>(cache_bytes));
   e.pings_bytes = 2.0 * fan.bins_per_side * std::max(fan.rays_per_bin, 1) *
                   std::max(fan.along_track_rays, 1) * kBytesPerRay * std::max(fan.workers, 1);
   return e;

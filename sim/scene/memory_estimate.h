@@ -7,9 +7,9 @@
 //   targets   every target's mesh is built when the Scene is compiled (scene.h), and copied
 //             into the target BVH; per target kTargetBytesPerTriangle x its triangle count (the
 //             count of build_target_mesh's default rule, shapes.h) + kTargetFixedBytes
-//   tiles     heightmap tiles are made lazily, but the cache keeps up to cache_tiles of them:
-//             min(cache_tiles, the level-0 tiles covering the extent) x T² x (4 + 1) bytes
-//             (float elevation, byte sediment; seabed_model.h)
+//   tiles     heightmap and noise tiles are made lazily, and the seabed's caches hold up to
+//             cache_bytes of them (seabed_model.h): min(cache_bytes, the level-0 tiles covering
+//             the extent x T² x (4 + 1) bytes: float elevation, byte sediment)
 //   pings     per render worker and ping: both sides' bins x the ray fan (rays_per_bin x
 //             along_track_rays, auto resolved by the loader's caller) x kBytesPerRay
 // Pure: no files, no clock; builds at most one small mesh per distinct (type, segments).
@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "sim/scene/scene_desc.h"
+#include "sim/seabed/seabed_model.h"
 
 namespace sonarloop::scene {
 
@@ -50,6 +51,6 @@ struct PingFan {
 double least_target_bytes(std::size_t count);
 
 MemoryEstimate estimate_memory(const SceneDesc& scene, const PingFan& fan, int tile_size = 256,
-                               std::size_t cache_tiles = 2048);
+                               std::size_t cache_bytes = seabed::kDefaultSeabedCacheBytes);
 
 }  // namespace sonarloop::scene

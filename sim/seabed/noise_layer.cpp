@@ -63,11 +63,11 @@ void catmull_rom_weights(double t, float w[4]) {
   w[3] = static_cast<float>(0.5 * (t3 - t2));
 }
 
-NoiseLayer::NoiseLayer(NoiseLayerSpec spec, std::size_t cache_tiles)
+NoiseLayer::NoiseLayer(NoiseLayerSpec spec, std::size_t cache_bytes)
     : spec_(std::move(spec)),
       k_(spec_.kernel_size),
       p_(2 * spec_.kernel_size),
-      cache_(std::max<std::size_t>(1, cache_tiles / 2)) {
+      cache_(std::max(kMinNoiseCachePairs, cache_bytes / pair_bytes(std::max(k_, 1)))) {
   if (k_ < 16 || k_ > 1024 || (k_ & (k_ - 1)) != 0) {
     throw std::invalid_argument("NoiseLayer: kernel_size must be a power of 2 in [16, 1024]");
   }

@@ -40,15 +40,26 @@ struct NoiseLayerSpec {
   std::string kernel_key;
 };
 
+inline constexpr std::size_t kDefaultNoiseCacheBytes = 64u << 20;
+inline constexpr std::size_t kMinNoiseCachePairs = 4;
+
 class NoiseLayer {
  public:
   using Tile = std::vector<float>;  // (K x K), row-major, row = lattice i (north)
 
-  explicit NoiseLayer(NoiseLayerSpec spec, std::size_t cache_tiles = 256);
+  // Its tiles are cached up to cache_bytes (at least kMinNoiseCachePairs pairs of tiles).
+  explicit NoiseLayer(NoiseLayerSpec spec, std::size_t cache_bytes = kDefaultNoiseCacheBytes);
 
   int tile_size() const { return k_; }
   double spacing_m() const { return spec_.spacing_m; }
   double rms() const { return spec_.rms; }
+  // Its tile cache's counters (tile_cache.h; a tile pair is one entry) and one entry's bytes.
+  TileCacheCounters cache_counters() const { return cache_.counters(); }
+  std::size_t cache_entry_bytes() const { return pair_bytes(k_); }
+  // The bytes of one cache entry (two K x K float tiles) for kernel size K.
+  static std::size_t pair_bytes(int k) {
+    return 2 * sizeof(float) * static_cast<std::size_t>(k) * k;
+  }
 
   // The tile whose sites are i in [ti*K, ti*K + K), j in [tj*K, tj*K + K).
   std::shared_ptr<const Tile> tile(std::int64_t ti, std::int64_t tj) const;

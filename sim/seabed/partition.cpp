@@ -9,7 +9,8 @@
 namespace sonarloop::seabed {
 namespace {
 
-std::unique_ptr<NoiseLayer> make_warp(const scene::SceneDesc& desc, std::uint64_t axis) {
+std::unique_ptr<NoiseLayer> make_warp(const scene::SceneDesc& desc, std::uint64_t axis,
+                                      std::size_t cache_bytes) {
   const auto& p = desc.seabed.partition;
   NoiseLayerSpec s;
   s.seed = desc.seed;
@@ -23,20 +24,27 @@ std::unique_ptr<NoiseLayer> make_warp(const scene::SceneDesc& desc, std::uint64_
   const double inner = 2.0 * s.spacing_m;
   s.spectrum = [=](double fx, double fy) { return pink_psd(fx, fy, beta, outer, inner); };
   s.kernel_key = spectrum_key("pink", {beta, outer, inner});
-  return std::make_unique<NoiseLayer>(std::move(s));
+  return std::make_unique<NoiseLayer>(std::move(s), cache_bytes);
 }
 
 }  // namespace
 
-Partition::Partition(const scene::SceneDesc& desc)
+Partition::Partition(const scene::SceneDesc& desc, std::size_t cache_bytes)
     : blend_width_m_(desc.seabed.partition.blend_width_m) {
   for (const auto& r : desc.seabed.regions)
     centres_.push_back(r.centre_m);
   if (centres_.empty()) centres_.push_back(Vec2::Zero());
   if (centres_.size() > 1 && desc.seabed.partition.border_warp_m > 0.0) {
-    warp_x_ = make_warp(desc, 0);
-    warp_y_ = make_warp(desc, 1);
+    warp_x_ = make_warp(desc, 0, cache_bytes);
+    warp_y_ = make_warp(desc, 1, cache_bytes);
   }
+}
+
+std::vector<const NoiseLayer*> Partition::noise_layers() const {
+  std::vector<const NoiseLayer*> out;
+  for (const auto* l : {warp_x_.get(), warp_y_.get()})
+    if (l) out.push_back(l);
+  return out;
 }
 
 float Partition::blend_weight(double d_self, double d_other, double w) {

@@ -18,7 +18,8 @@ inline constexpr int kMaxRegions = 3;
 
 class Partition {
  public:
-  Partition(const scene::SceneDesc& desc);
+  // cache_bytes: each warp layer's tile cache (noise_layer.h).
+  Partition(const scene::SceneDesc& desc, std::size_t cache_bytes = kDefaultNoiseCacheBytes);
 
   int region_count() const { return static_cast<int>(centres_.size()); }
 
@@ -34,6 +35,9 @@ class Partition {
   // Smoothstep cross-fade weight of a region whose warped distance is d_self, given the nearest
   // other region's distance d_other, over the blend width w (0.5 on the border).
   static float blend_weight(double d_self, double d_other, double w);
+
+  // Its warp layers (none with one region or no warp).
+  std::vector<const NoiseLayer*> noise_layers() const;
 
  private:
   std::vector<Vec2> centres_;

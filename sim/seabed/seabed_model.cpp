@@ -19,7 +19,7 @@ namespace {
 // Model ids: a counter, not randomness (ids never reach an output).
 std::atomic<std::uint64_t> g_next_model_uid{1};
 
-std::unique_ptr<NoiseLayer> make_elevation(const scene::SceneDesc& desc) {
+std::unique_ptr<NoiseLayer> make_elevation(const scene::SceneDesc& desc, std::size_t cache_bytes) {
   const auto& e = desc.seabed.elevation;
   if (e.rms_m <= 0.0) return nullptr;
   NoiseLayerSpec s;
@@ -34,11 +34,11 @@ std::unique_ptr<NoiseLayer> make_elevation(const scene::SceneDesc& desc) {
   const double inner = e.inner_scale_m;
   s.spectrum = [=](double fx, double fy) { return pink_psd(fx, fy, beta_2d, outer, inner); };
   s.kernel_key = spectrum_key("pink", {beta_2d, outer, inner});
-  return std::make_unique<NoiseLayer>(std::move(s));
+  return std::make_unique<NoiseLayer>(std::move(s), cache_bytes);
 }
 
 std::unique_ptr<NoiseLayer> make_ripples(const scene::SceneDesc& desc, std::size_t region,
-                                         const scene::RipplesDesc& r) {
+                                         const scene::RipplesDesc& r, std::size_t cache_bytes) {
   if (r.height_m <= 0.0) return nullptr;
   NoiseLayerSpec s;
   s.seed = desc.seed;
@@ -55,11 +55,11 @@ std::unique_ptr<NoiseLayer> make_ripples(const scene::SceneDesc& desc, std::size
   const double b = r.beta;
   s.spectrum = [=](double fx, double fy) { return ripple_psd(fx, fy, wl, dir, b1, b, eps); };
   s.kernel_key = spectrum_key("ripple", {wl, dir, b1, b, eps});
-  return std::make_unique<NoiseLayer>(std::move(s));
+  return std::make_unique<NoiseLayer>(std::move(s), cache_bytes);
 }
 
 std::unique_ptr<NoiseLayer> make_rocky(const scene::SceneDesc& desc, std::size_t region,
-                                       const scene::RockyDesc& r) {
+                                       const scene::RockyDesc& r, std::size_t cache_bytes) {
   if (r.rms_m <= 0.0) return nullptr;
   NoiseLayerSpec s;
   s.seed = desc.seed;
@@ -75,7 +75,7 @@ std::unique_ptr<NoiseLayer> make_rocky(const scene::SceneDesc& desc, std::size_t
   const double outer = r.outer_scale_m;
   s.spectrum = [=](double fx, double fy) { return rocky_psd(fx, fy, beta, aniso, dir, outer); };
   s.kernel_key = spectrum_key("rocky", {beta, aniso, dir, outer});
-  return std::make_unique<NoiseLayer>(std::move(s));
+  return std::make_unique<NoiseLayer>(std::move(s), cache_bytes);
 }
 
 void check_level(int level) {
@@ -94,23 +94,55 @@ SeabedModel::SeabedModel(const scene::SceneDesc& desc, SeabedOptions options)
       slope_(desc.seabed.elevation.slope),
       extent_min_(desc.seabed.origin_m),
       extent_max_(desc.seabed.origin_m + desc.seabed.extent_m),
-      elevation_(make_elevation(desc)),
-      partition_(desc),
+      elevation_(make_elevation(desc, options.cache_bytes / kNoiseLayerBudgetShare)),
+      partition_(desc, options.cache_bytes / kNoiseLayerBudgetShare),
       clutter_(
           desc, [this](double x, double y) { return partition_.region_at(x, y); },
           [this](double x, double y) { return base_elevation(x, y); }),
-      cache_(options.cache_tiles) {
+      cache_(kMinHeightTiles) {
+  const std::size_t layer_bytes = options.cache_bytes / kNoiseLayerBudgetShare;
   for (std::size_t k = 0; k < desc.seabed.regions.size(); ++k) {
     const auto& r = desc.seabed.regions[k];
     RegionLayers layers;
     layers.sediment = r.sediment;
-    if (r.texture.ripples) layers.ripples = make_ripples(desc, k, *r.texture.ripples);
-    if (r.texture.rocky) layers.rocky = make_rocky(desc, k, *r.texture.rocky);
+    if (r.texture.ripples) layers.ripples = make_ripples(desc, k, *r.texture.ripples, layer_bytes);
+    if (r.texture.rocky) layers.rocky = make_rocky(desc, k, *r.texture.rocky, layer_bytes);
     regions_.push_back(std::move(layers));
   }
   if (regions_.empty()) {
     regions_.push_back(RegionLayers{*find_sediment("medium_sand"), nullptr, nullptr});
   }
+  // the heightmap tiles get what the noise layers leave of the budget
+  std::size_t noise_bytes = 0;
+  for (const NoiseLayer* l : noise_layers())
+    noise_bytes += l->cache_counters().capacity * l->cache_entry_bytes();
+  const std::size_t left =
+      options.cache_bytes > noise_bytes ? options.cache_bytes - noise_bytes : 0;
+  cache_.set_capacity(std::max(kMinHeightTiles, left / height_tile_bytes(options.tile_size)));
+}
+
+std::vector<const NoiseLayer*> SeabedModel::noise_layers() const {
+  std::vector<const NoiseLayer*> out = partition_.noise_layers();
+  if (elevation_) out.push_back(elevation_.get());
+  for (const RegionLayers& r : regions_) {
+    if (r.ripples) out.push_back(r.ripples.get());
+    if (r.rocky) out.push_back(r.rocky.get());
+  }
+  return out;
+}
+
+SeabedCacheStats SeabedModel::cache_stats() const {
+  SeabedCacheStats s;
+  s.heightmap = cache_.counters();
+  s.bytes = s.heightmap.tiles * height_tile_bytes(options_.tile_size);
+  s.budget_bytes = s.heightmap.capacity * height_tile_bytes(options_.tile_size);
+  for (const NoiseLayer* l : noise_layers()) {
+    const TileCacheCounters c = l->cache_counters();
+    s.noise += c;
+    s.bytes += c.tiles * l->cache_entry_bytes();
+    s.budget_bytes += c.capacity * l->cache_entry_bytes();
+  }
+  return s;
 }
 
 std::int64_t SeabedModel::tile_of(std::int64_t i) const {

@@ -46,10 +46,25 @@ struct HeightTile {
   std::vector<std::uint8_t> sediment;  // (T x T) SedimentId of each point
 };
 
+inline constexpr std::size_t kDefaultSeabedCacheBytes = 256u << 20;
+// Each noise layer's share of the budget, and the fewest heightmap tiles kept whatever it is.
+inline constexpr std::size_t kNoiseLayerBudgetShare = 16;
+inline constexpr std::size_t kMinHeightTiles = 16;
+
 struct SeabedOptions {
-  int tile_size = 256;             // T, points per tile side
-  std::size_t cache_tiles = 2048;  // heightmap tiles kept in memory (~0.3 MB each at T = 256)
+  int tile_size = 256;  // T, points per tile side
+  // The bytes the seabed's tile caches may hold: each noise layer's tiles up to 1/16 of it, the
+  // heightmap tiles (T² x 5 bytes each: 0.33 MB at T = 256) the rest; at least
+  // kMinNoiseCachePairs and kMinHeightTiles entries whatever it is. Least recently used tiles
+  // are evicted beyond it and made again when asked (the same bytes: tile_cache.h).
+  std::size_t cache_bytes = kDefaultSeabedCacheBytes;
 };
+
+// The bytes one heightmap tile of T x T points holds (its elevation and sediment arrays).
+inline std::size_t height_tile_bytes(int tile_size) {
+  return static_cast<std::size_t>(tile_size) * static_cast<std::size_t>(tile_size) *
+         (sizeof(float) + sizeof(std::uint8_t));
+}
 
 class SeabedModel {
  public:
@@ -93,6 +108,7 @@ class SeabedModel {
   // (every detail level; a tile evicted and made again counts twice).
   std::size_t cached_tile_count() const { return cache_.size(); }
   std::uint64_t tiles_made() const { return tiles_made_.load(std::memory_order_relaxed); }
+  SeabedCacheStats cache_stats() const;
 
   // Makes every tile overlapping [x0, x1] × [y0, y1] using up to `threads` threads.
   // on_progress (optional) is called on the calling thread with the fraction of tiles done.
@@ -101,6 +117,8 @@ class SeabedModel {
 
  private:
   std::shared_ptr<const HeightTile> make_tile(std::int64_t ti, std::int64_t tj, int level) const;
+  // Every noise layer (the partition's, the elevation's, the regions').
+  std::vector<const NoiseLayer*> noise_layers() const;
 
   struct RegionLayers {
     SedimentId sediment = 0;

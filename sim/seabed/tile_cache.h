@@ -4,7 +4,8 @@
 // the others wait for it (prefetch() does not wait). Tiles are immutable once made
 // (shared_ptr<const V>), so an evicted tile stays valid for whoever still holds it, and
 // regenerating it gives the same bytes because every generator here is a pure function of (seed,
-// tile).
+// tile). Its capacity is a count of tiles: the owner sizes it from a byte budget (its tiles are
+// all one size), and counts its hits, misses and evictions (TileCacheCounters).
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -33,18 +34,40 @@ struct TileKeyHash {
   }
 };
 
+// What a cache did since it was made: get() calls that found their tile (made or being made by
+// another thread) or had to make it, and tiles evicted; and what it holds now.
+struct TileCacheCounters {
+  std::uint64_t hits = 0, misses = 0, evictions = 0;
+  std::size_t tiles = 0, capacity = 0;  // held now; at most (a few more while being made)
+  TileCacheCounters& operator+=(const TileCacheCounters& o) {
+    hits += o.hits;
+    misses += o.misses;
+    evictions += o.evictions;
+    tiles += o.tiles;
+    capacity += o.capacity;
+    return *this;
+  }
+};
+
+// What a seabed's caches did and hold (SeabedModel::cache_stats), the heightmap's and the noise
+// layers' (summed) apart, with the bytes they hold and may hold.
+struct SeabedCacheStats {
+  TileCacheCounters heightmap, noise;
+  std::size_t bytes = 0, budget_bytes = 0;
+};
+
 template <class V>
 class TileCache {
  public:
   using Ptr = std::shared_ptr<const V>;
 
-  explicit TileCache(std::size_t capacity) : capacity_(capacity) {}
+  explicit TileCache(std::size_t capacity) : capacity_(std::max<std::size_t>(capacity, 1)) {}
 
   // Returns the cached tile or makes it with `make` (called outside the lock).
   Ptr get(const TileKey& key, const std::function<Ptr()>& make) {
     std::promise<Ptr> promise;
     std::shared_future<Ptr> future;
-    if (claim(key, promise, future)) fulfil(key, promise, make);
+    if (claim(key, promise, future, true)) fulfil(key, promise, make);
     return future.get();
   }
 
@@ -53,12 +76,30 @@ class TileCache {
   void prefetch(const TileKey& key, const std::function<Ptr()>& make) {
     std::promise<Ptr> promise;
     std::shared_future<Ptr> future;
-    if (claim(key, promise, future)) fulfil(key, promise, make);
+    if (claim(key, promise, future, false)) fulfil(key, promise, make);
   }
 
   std::size_t size() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return map_.size();
+  }
+  std::size_t capacity() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return capacity_;
+  }
+  // A new capacity (before use; tiles beyond it go at the next insertion).
+  void set_capacity(std::size_t capacity) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    capacity_ = std::max<std::size_t>(capacity, 1);
+  }
+
+  // get()'s hits and misses (prefetch() is work ahead, not counted), evictions, size.
+  TileCacheCounters counters() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    TileCacheCounters c = counters_;
+    c.tiles = map_.size();
+    c.capacity = capacity_;
+    return c;
   }
 
   void clear() {
@@ -72,15 +113,18 @@ class TileCache {
     std::uint64_t last_use = 0;
   };
 
-  // The entry's future; true if it is new and this thread must fulfil it.
-  bool claim(const TileKey& key, std::promise<Ptr>& promise, std::shared_future<Ptr>& future) {
+  // The entry's future; true if it is new and this thread must fulfil it. `counted`: a get().
+  bool claim(const TileKey& key, std::promise<Ptr>& promise, std::shared_future<Ptr>& future,
+             bool counted) {
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = map_.find(key);
     if (it != map_.end()) {
       it->second.last_use = ++clock_;
       future = it->second.value;
+      if (counted) ++counters_.hits;
       return false;
     }
+    if (counted) ++counters_.misses;
     future = promise.get_future().share();
     map_.emplace(key, Entry{future, ++clock_});
     return true;
@@ -118,6 +162,7 @@ class TileCache {
     for (const auto& [use, k] : ready) {
       if (map_.size() <= target) break;
       map_.erase(k);
+      ++counters_.evictions;
     }
   }
 
@@ -125,6 +170,7 @@ class TileCache {
   mutable std::mutex mutex_;
   std::unordered_map<TileKey, Entry, TileKeyHash> map_;
   std::uint64_t clock_ = 0;
+  TileCacheCounters counters_;
 };
 
 }  // namespace sonarloop::seabed

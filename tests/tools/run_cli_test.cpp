@@ -444,6 +444,34 @@ TEST_CASE("run cli: a full disk under --record: the run goes on and says so, wit
   CHECK(slurp(dir.file("r/truth.csv")).back() == '\n');
 }
 
+TEST_CASE("run cli: --memory-budget bounds the seabed's caches; evicted tiles, the same pings") {
+  // the default scenario (2.5 cm heightmap, 50 m range): 10 s need more tiles than 16 MB hold
+  testing::TempDir dir("run-cli-budget");
+  const std::string common = "run --rate max --duration 10 --threads 2 --quiet --record ";
+  REQUIRE(run(common + dir.file("a") + " --stats-json " + dir.file("a.json")) == 0);
+  REQUIRE(run(common + dir.file("b") + " --memory-budget 16 --stats-json " + dir.file("b.json"),
+              dir.file("b.err")) == 0);
+  CHECK(slurp(dir.file("b/pings.xtf")) == slurp(dir.file("a/pings.xtf")));
+  const std::string a = slurp(dir.file("a.json")), b = slurp(dir.file("b.json"));
+  const auto number = [](const std::string& json, const std::string& key) {
+    const std::size_t at = json.find("\"" + key + "\": ");
+    REQUIRE(at != std::string::npos);
+    return std::stoull(json.substr(at + key.size() + 4));
+  };
+  INFO(a << b);
+  CHECK(number(a, "budget_bytes") <= 256ull << 20);  // whole tiles of it
+  CHECK(number(a, "budget_bytes") > 250ull << 20);
+  CHECK(number(a, "evictions") == 0);
+  CHECK(number(b, "budget_bytes") <= 16ull << 20);
+  CHECK(number(b, "bytes") <= number(b, "budget_bytes"));
+  CHECK(number(b, "evictions") > 0);
+  CHECK(number(b, "tiles_made") > number(a, "tiles_made"));  // made again after eviction
+  CHECK_THAT(slurp(dir.file("b.err")), Catch::Contains("seabed caches: heightmap"));
+  // below 16 MB: refused, naming the option
+  CHECK(run("run --memory-budget 8 --duration 1", dir.file("c.err")) == 2);
+  CHECK_THAT(slurp(dir.file("c.err")), Catch::Contains("--memory-budget"));
+}
+
 TEST_CASE("run cli: bad input gets a clear error") {
   testing::TempDir dir("run-cli-bad");
   write_file(dir.file("s.yaml"), testing::small_scenario_yaml());

@@ -241,6 +241,43 @@ TEST_CASE("seabed: rocks stand above the seabed where they lie") {
   }
 }
 
+TEST_CASE("seabed: the caches hold at most their byte budget; evicted tiles come back equal") {
+  scene::SceneDesc d = two_region_desc(2);
+  d.seabed.grid_spacing_m = 0.025;
+  d.seabed.extent_m = Vec2(1000.0, 100.0);
+  d.seabed.origin_m = Vec2(0.0, -50.0);
+  SeabedOptions opt;
+  opt.tile_size = 64;
+  // 64 MB: each of the five noise layers up to 4 MB, the heightmap tiles the rest
+  opt.cache_bytes = 64u << 20;
+  const SeabedCacheStats full = SeabedModel(d, opt).cache_stats();
+  CHECK(full.budget_bytes <= opt.cache_bytes);
+  CHECK(full.budget_bytes >= opt.cache_bytes * 15 / 16);
+  CHECK(full.heightmap.capacity * height_tile_bytes(64) >= opt.cache_bytes / 2);
+  // 1 MB: below what the noise layers need at least (kMinNoiseCachePairs each): they keep that,
+  // the heightmap kMinHeightTiles
+  opt.cache_bytes = 1u << 20;
+  const SeabedModel m(d, opt);
+  CHECK(m.cache_stats().heightmap.capacity == kMinHeightTiles);
+  const float first = m.tile(0, 0)->elevation_m[100];
+  // 1,000 tiles of 64² points (20 kB each, 20 MB) along the line
+  for (int k = 0; k < 1000; ++k)
+    m.tile(k, 0);
+  const SeabedCacheStats s = m.cache_stats();
+  INFO("held " << s.bytes << " of " << s.budget_bytes << " B; heightmap " << s.heightmap.tiles
+               << " of " << s.heightmap.capacity << " tiles, noise " << s.noise.tiles << " of "
+               << s.noise.capacity);
+  CHECK(s.noise.capacity == kMinNoiseCachePairs * 5);
+  CHECK(s.bytes <= s.budget_bytes);
+  CHECK(s.heightmap.misses == 1000);  // tile (0, 0) was asked for twice in a row
+  CHECK(s.heightmap.evictions >= 1000 - s.heightmap.capacity);
+  CHECK(s.heightmap.tiles <= s.heightmap.capacity);
+  CHECK(s.noise.hits + s.noise.misses > 0);
+  // tile (0, 0) was evicted long ago: made again, the same heights
+  CHECK(m.tile(0, 0)->elevation_m[100] == first);
+  CHECK(m.tiles_made() == 1001);
+}
+
 TEST_CASE("seabed: tiles are made only where asked") {
   // a 1 km survey line at 2.5 cm: asking for a few points far apart makes a few tiles
   scene::SceneDesc d = two_region_desc(2);

@@ -1,5 +1,6 @@
 // The tile cache on its own: one generation per tile whatever the threads, waits in get() and
-// none in prefetch(), retries after a failure, eviction of the least recently used tiles.
+// none in prefetch(), retries after a failure, eviction of the least recently used tiles, and
+// its counters.
 #include "sim/seabed/tile_cache.h"
 
 #include <atomic>
@@ -142,4 +143,18 @@ TEST_CASE("tile cache: beyond capacity the least recently used tiles go, and com
   CHECK(made == before);
   CHECK(*cache.get({2, 0, 0}, make(2)) == 2);  // evicted: made again, same value
   CHECK(made == before + 1);
+  // the counters: get()s that found their tile, that made it, and the tiles evicted
+  const TileCacheCounters c = cache.counters();
+  CHECK(c.hits == 4);
+  CHECK(c.misses == static_cast<std::uint64_t>(made));
+  CHECK(c.evictions == static_cast<std::uint64_t>(made) - c.tiles);
+  CHECK(c.tiles == cache.size());
+  CHECK(c.capacity == 8);
+  // prefetch is not counted (work ahead); a smaller capacity takes effect at the next insertion
+  cache.prefetch({100, 0, 0}, make(100));
+  CHECK(cache.counters().misses == c.misses);
+  cache.set_capacity(2);
+  cache.get({101, 0, 0}, make(101));
+  CHECK(cache.size() <= 2);
+  CHECK(cache.counters().capacity == 2);
 }

@@ -241,11 +241,21 @@ TEST_CASE("seabed: rocks stand above the seabed where they lie") {
   }
 }
 
-TEST_CASE("seabed: the caches hold at most their byte budget; evicted tiles come back equal") {
+namespace {
+
+// A 1 km x 100 m survey line's seabed at 2.5 cm.
+scene::SceneDesc line_desc() {
   scene::SceneDesc d = two_region_desc(2);
   d.seabed.grid_spacing_m = 0.025;
   d.seabed.extent_m = Vec2(1000.0, 100.0);
   d.seabed.origin_m = Vec2(0.0, -50.0);
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("seabed: the caches hold at most their byte budget; evicted tiles come back equal") {
+  const scene::SceneDesc d = line_desc();
   SeabedOptions opt;
   opt.tile_size = 64;
   // 64 MB: each of the five noise layers up to 4 MB, the heightmap tiles the rest
@@ -280,10 +290,7 @@ TEST_CASE("seabed: the caches hold at most their byte budget; evicted tiles come
 
 TEST_CASE("seabed: tiles are made only where asked") {
   // a 1 km survey line at 2.5 cm: asking for a few points far apart makes a few tiles
-  scene::SceneDesc d = two_region_desc(2);
-  d.seabed.grid_spacing_m = 0.025;
-  d.seabed.extent_m = Vec2(1000.0, 100.0);
-  d.seabed.origin_m = Vec2(0.0, -50.0);
+  const scene::SceneDesc d = line_desc();
   SeabedOptions opt;
   opt.tile_size = 128;
   const SeabedModel m(d, opt);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "atr/contact_gate.h"
+#include "drivers/io/input_file.h"
 
 namespace sonarloop::atr {
 namespace {
@@ -491,6 +492,7 @@ void save_model(const Model& m, const std::string& path) {
 }
 
 Model load_model(const std::string& path, std::uint16_t* version) {
+  io::check_input_file(path, "model file", kMaxModelFileBytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open model file '" + path + "'");
   const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),

@@ -214,8 +214,9 @@ XtfSchedule make_xtf_schedule(std::span<const XtfPacketTime> packets) {
   return s;
 }
 
-XtfTimeline read_xtf_timeline(const std::string& path) {
+XtfTimeline read_xtf_timeline(const std::string& path, std::uint64_t skip_larger_than) {
   xtf::XtfReader reader(path);
+  reader.skip_larger_than(skip_larger_than);
   XtfTimeline tl;
   tl.file_header = reader.file_header_bytes();
   std::vector<XtfPacketTime> times;
@@ -229,7 +230,7 @@ XtfTimeline read_xtf_timeline(const std::string& path) {
         t.seconds_per_ping_s = record.ping.channels.front().seconds_per_ping_s;
     }
     times.push_back(t);
-    tl.packet_bytes.push_back(record.packet.bytes.size());
+    tl.packet_bytes.push_back(record.packet.record_bytes);
     tl.packet_offsets.push_back(record.packet.offset);
   }
   tl.schedule = make_xtf_schedule(times);
@@ -242,7 +243,8 @@ ReplaySummary replay_xtf(const std::string& path, const DatagramSink& send, Cloc
                          const ReplayOptions& options_in) {
   ReplayOptions options = options_in;
   if (!options.on_warning) options.on_warning = warn_on_stderr;
-  const XtfTimeline tl = read_xtf_timeline(path);
+  // a packet too long for one datagram is skipped by seeking, never read
+  const XtfTimeline tl = read_xtf_timeline(path, options.max_datagram_bytes);
   const XtfSchedule& sched = tl.schedule;
   const std::size_t n = tl.packet_bytes.size();
 
@@ -300,8 +302,9 @@ ReplaySummary replay_xtf(const std::string& path, const DatagramSink& send, Cloc
     std::int64_t header_t = 0;
 
     xtf::XtfReader reader(path);
+    reader.skip_larger_than(options.max_datagram_bytes);
     for (std::size_t k = 0; k < n; ++k) {
-      if (!reader.next_raw(packet) || packet.bytes.size() != tl.packet_bytes[k]) {
+      if (!reader.next_raw(packet) || packet.record_bytes != tl.packet_bytes[k]) {
         throw std::runtime_error("'" + path + "' changed during the replay (packet " +
                                  std::to_string(k) + " at byte offset " +
                                  std::to_string(reader.offset()) + ")");
@@ -316,11 +319,11 @@ ReplaySummary replay_xtf(const std::string& path, const DatagramSink& send, Cloc
         ++summary.file_headers_sent;
         header_t = t;
       }
-      if (packet.bytes.size() > options.max_datagram_bytes) {
+      if (packet.skipped) {
         if (summary.skipped++ == 0) {
           options.on_warning("'" + path + "': packet at byte offset " +
                              std::to_string(packet.offset) + " has " +
-                             std::to_string(packet.bytes.size()) + " bytes, more than one " +
+                             std::to_string(packet.record_bytes) + " bytes, more than one " +
                              std::to_string(options.max_datagram_bytes) +
                              "-byte datagram: skipped (further ones are counted)");
         }

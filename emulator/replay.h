@@ -67,6 +67,7 @@
 
 #include "drivers/can/can_transport.h"
 #include "drivers/net/udp_sender.h"
+#include "drivers/xtf/xtf_file.h"
 #include "emulator/pacer.h"
 
 namespace sonarloop::emulator {
@@ -160,15 +161,18 @@ struct XtfSchedule {
 // The recording time of every packet (see the header comment). Pure.
 XtfSchedule make_xtf_schedule(std::span<const XtfPacketTime> packets);
 
-// Reads and checks the whole file (every ping decoded) and returns its file header bytes and
-// schedule. Throws xtf::XtfFormatError (offset) or std::runtime_error (cannot open).
+// Reads and checks the whole file (every ping decoded, but those skipped) and returns its file
+// header bytes and schedule. Throws xtf::XtfFormatError (offset) or std::runtime_error (cannot
+// open).
 struct XtfTimeline {
   std::vector<std::uint8_t> file_header;
   std::vector<std::uint64_t> packet_bytes;    // size of each packet
   std::vector<std::uint64_t> packet_offsets;  // byte offset of each packet in the file
   XtfSchedule schedule;
 };
-XtfTimeline read_xtf_timeline(const std::string& path);
+// Packets longer than skip_larger_than are not read (their length is kept; replay skips them).
+XtfTimeline read_xtf_timeline(const std::string& path,
+                              std::uint64_t skip_larger_than = xtf::kMaxXtfRecordBytes);
 
 // Sends one datagram; false if it was dropped (counted).
 using DatagramSink = std::function<bool(std::span<const std::uint8_t>)>;

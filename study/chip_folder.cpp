@@ -13,6 +13,8 @@
 #include "atr/chip_label_name.h"
 #include "atr/chip_resample.h"
 #include "drivers/image/jpeg.h"
+#include "drivers/io/input_file.h"
+#include "drivers/json/utf8.h"
 
 namespace sonarloop::study {
 
@@ -56,6 +58,20 @@ std::vector<fs::directory_entry> sorted_entries(const fs::path& dir) {
     return a.path().filename().string() < b.path().filename().string();
   });
   return out;
+}
+
+// Whether a folder entry can be looked at (a symbolic link loop or a dangling link cannot): if
+// not, the reason stops the reading, or with skip_bad the entry is listed as skipped.
+bool readable_entry(const fs::directory_entry& e, const std::string& rel,
+                    const ChipFolderOptions& options, ChipFolder& folder) {
+  std::error_code ec;
+  e.status(ec);
+  if (!ec) return true;
+  const std::string reason =
+      "cannot read '" + json::printable_bytes(e.path().string()) + "': " + ec.message();
+  if (!options.skip_bad) throw std::runtime_error(reason);
+  folder.skipped.push_back({json::printable_bytes(rel), reason});
+  return false;
 }
 
 // One CSV record split into fields (RFC 4180 quoting, no embedded newlines).
@@ -187,6 +203,8 @@ void apply_labels_csv(const fs::path& csv, ChipFolder& folder) {
 Chip read_image_chip(const fs::path& path, const std::string& source,
                      const std::optional<ChipSize>& size) {
   try {
+    // a regular file of a sane size: a FIFO named x.png would block the open for ever
+    io::check_input_file(path.string(), "chip", image::kMaxImageFileBytes);
     std::ifstream in(path, std::ios::binary);
     if (!in) throw std::runtime_error("cannot open '" + path.string() + "'");
     std::uint8_t head[8] = {};
@@ -281,7 +299,17 @@ ChipFolder read_chip_folder(const std::string& root, const ChipFolderOptions& op
   std::vector<fs::path> class_dirs;
   bool csv = false;
   for (const auto& e : sorted_entries(dir)) {
-    if (e.is_directory()) {
+    if (!readable_entry(e, e.path().filename().string(), options, folder)) continue;
+    if (e.is_directory(ec)) {
+      const std::string cls = e.path().filename().string();
+      if (!json::is_valid_utf8(cls)) {
+        // it would be a class name in every report, and JSON holds only UTF-8
+        const std::string reason = "class folder '" + json::printable_bytes(e.path().string()) +
+                                   "': its name is not valid UTF-8 (rename it)";
+        if (!options.skip_bad) throw std::runtime_error(reason);
+        folder.skipped.push_back({json::printable_bytes(cls), reason + ": the class is left out"});
+        continue;
+      }
       class_dirs.push_back(e.path());
     } else if (is_image_name(e.path())) {
       root_images.push_back(e.path());
@@ -303,8 +331,10 @@ ChipFolder read_chip_folder(const std::string& root, const ChipFolderOptions& op
       std::size_t count = 0;
       for (const auto& e : sorted_entries(cd)) {
         const std::string rel = cls + "/" + e.path().filename().string();
-        if (e.is_directory() || !is_image_name(e.path())) {
-          const std::string what = e.is_directory() ? "unexpected folder '" : "unexpected file '";
+        if (!readable_entry(e, rel, options, folder)) continue;
+        const bool is_dir = e.is_directory(ec);
+        if (is_dir || !is_image_name(e.path())) {
+          const std::string what = is_dir ? "unexpected folder '" : "unexpected file '";
           const std::string reason = what + (dir / rel).string() +
                                      "': a class folder holds only .png, .jpg or .jpeg chips";
           if (!options.skip_bad) throw std::runtime_error(reason);

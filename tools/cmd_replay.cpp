@@ -14,6 +14,7 @@
 #include "drivers/can/can_transport.h"
 #include "drivers/can/candump_log.h"
 #include "drivers/can/socketcand_server.h"
+#include "drivers/io/input_file.h"
 #include "drivers/net/host_port.h"
 #include "drivers/net/udp_sender.h"
 #include "emulator/pacer.h"
@@ -58,6 +59,7 @@ FileKind file_kind(const std::string& path) {
   const std::string ext = lower(std::filesystem::path(path).extension().string());
   if (ext == ".xtf") return FileKind::kXtf;
   if (ext == ".log") return FileKind::kCandump;
+  io::check_input_file(path, "recording");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open '" + path + "'");
   char c = 0;

@@ -27,6 +27,10 @@ std::string read_text_file(const std::string& path) {
   const auto st = fs::status(path, ec);
   if (!fs::exists(st)) fail("no such file");
   if (fs::is_directory(st)) fail("is a directory, not a file");
+  if (!fs::is_regular_file(st)) fail("is not a regular file (a FIFO or a device?)");
+  if (fs::file_size(path, ec) > kMaxYamlFileBytes) {
+    fail("is larger than " + std::to_string(kMaxYamlFileBytes >> 20) + " MB: not a scenario file?");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(std::string("cannot be opened: ") + std::strerror(errno));
   std::ostringstream ss;

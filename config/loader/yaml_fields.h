@@ -232,7 +232,11 @@ class Field {
   std::shared_ptr<const std::string> text_;  // the document's source (may be null)
 };
 
-// Reads a whole text file; a missing or unreadable file -> ConfigError naming the path.
+// The largest scenario or configuration file read: 64 MB (a list of 100,000 targets, one line
+// each, is about 6 MB).
+inline constexpr std::uintmax_t kMaxYamlFileBytes = std::uintmax_t{64} << 20;
+// Reads a whole text file; a missing, unreadable, oversized or not regular file (a FIFO, a
+// device) -> ConfigError naming the path.
 std::string read_text_file(const std::string& path);
 
 // Parses YAML text holding one document (empty text = an empty map) into its root Field.

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "drivers/can/can_text.h"
+#include "drivers/io/input_file.h"
 #include "drivers/io/line_file.h"
 #include "drivers/net/unique_fd.h"
 
@@ -328,11 +329,21 @@ CandumpLineStatus parse_candump_line(std::string_view line, CandumpRecord& out,
   return CandumpLineStatus::kRecord;
 }
 
+namespace {
+
+// `path`, once it is known to be a regular file (a FIFO would block the open for ever)
+const std::string& regular_file(const std::string& path) {
+  io::check_input_file(path, "candump log");
+  return path;
+}
+
+}  // namespace
+
 CandumpReader::CandumpReader(const std::string& path, bool strict, bool ignore_torn_tail)
     : path_(path),
       strict_(strict),
       ignore_torn_tail_(ignore_torn_tail),
-      in_(path, std::ios::binary) {
+      in_(regular_file(path), std::ios::binary) {
   if (!in_)
     throw std::runtime_error("candump log " + path + ": cannot open: " + net::errno_text(errno));
 }

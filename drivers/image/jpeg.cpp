@@ -13,6 +13,8 @@
 // (after jpeglib.h: the message codes, JWRN_JPEG_EOF)
 #include <jerror.h>
 
+#include "drivers/io/input_file.h"
+
 namespace sonarloop::image {
 namespace {
 
@@ -123,6 +125,7 @@ bool looks_like_jpeg(std::span<const std::uint8_t> head) {
 }
 
 Gray8 read_jpeg_gray8(const std::string& path, std::size_t max_pixels) {
+  io::check_input_file(path, "image", kMaxImageFileBytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open '" + path + "' (rb)");
   const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),

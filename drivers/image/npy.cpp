@@ -6,6 +6,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "drivers/io/input_file.h"
+
 namespace sonarloop::image {
 
 // Layout (numpy/lib/format.py, version 1.0): "\x93NUMPY", major 1, minor 0, u16 header length,
@@ -37,6 +39,7 @@ void write_npy_f32(const std::string& path, std::size_t rows, std::size_t cols,
 }
 
 NpyF32 read_npy_f32(const std::string& path) {
+  io::check_input_file(path, ".npy file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open '" + path + "'");
   char pre[10] = {};

@@ -6,6 +6,8 @@
 #include <memory>
 #include <stdexcept>
 
+#include "drivers/io/input_file.h"
+
 namespace sonarloop::image {
 namespace {
 
@@ -95,6 +97,7 @@ std::string too_many_pixels_message(const std::string& path, std::size_t width, 
 }
 
 Gray8 read_png_gray8(const std::string& path, std::size_t max_pixels) {
+  io::check_input_file(path, "image", kMaxImageFileBytes);
   FilePtr f = open_or_throw(path, "rb");
   unsigned char sig[8] = {};
   if (std::fread(sig, 1, 8, f.get()) != 8 || png_sig_cmp(sig, 0, 8) != 0) {

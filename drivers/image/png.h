@@ -30,6 +30,9 @@ void write_png_rgb8(const std::string& path, int width, int height,
 // file cannot make a reader allocate gigabytes (fuzzing found a 125-byte JPEG declaring
 // 65298 x 2301 pixels: 150 Mpixels, 0.6 GB once converted to a float chip).
 inline constexpr std::size_t kMaxImagePixels = std::size_t{1} << 26;
+// The largest image file the readers open (a regular file: drivers/io/input_file.h): 256 MB, far
+// above any compressed image of kMaxImagePixels.
+inline constexpr std::uint64_t kMaxImageFileBytes = std::uint64_t{256} << 20;
 
 // Reads any PNG (grey, grey+alpha, RGB, RGBA, palette, 1-16 bit) as 8-bit grey.
 // Colour is converted with the ITU-R BT.601 luma weights, 16-bit samples keep their top byte.

@@ -9,6 +9,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include "drivers/io/input_file.h"
 #include "drivers/io/line_file.h"
 #include "drivers/net/unique_fd.h"
 
@@ -33,9 +34,7 @@ void XtfReader::read_exact(std::uint8_t* dst, std::size_t n, std::uint64_t at) {
 }
 
 XtfReader::XtfReader(const std::string& path) : path_(path) {
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(path, ec);
-  if (ec) throw std::runtime_error("cannot open XTF file '" + path + "': " + ec.message());
+  const std::uint64_t size = io::check_input_file(path, "XTF file");
   file_.reset(std::fopen(path.c_str(), "rb"));
   if (!file_) {
     throw std::runtime_error("cannot open XTF file '" + path + "': " + std::strerror(errno));
@@ -115,9 +114,24 @@ bool XtfReader::next_raw(XtfRawPacket& packet) {
              " runs past the end of the file (" + std::to_string(remaining) + " bytes left)",
          at);
   }
-  packet.bytes.resize(static_cast<std::size_t>(record));
-  read_exact(packet.bytes.data() + kPacketStartSize,
-             static_cast<std::size_t>(record) - kPacketStartSize, at + kPacketStartSize);
+  packet.record_bytes = record;
+  packet.skipped = record > skip_larger_than_;
+  if (packet.skipped) {
+    // not read: its start only, then past it
+    if (std::fseek(file_.get(), static_cast<long>(at + record), SEEK_SET) != 0) {
+      fail(where + "cannot seek past its " + std::to_string(record) + " bytes", at);
+    }
+  } else {
+    if (record > kMaxXtfRecordBytes) {
+      fail(where + "NumBytesThisRecord " + std::to_string(record) + " is more than the " +
+               std::to_string(kMaxXtfRecordBytes >> 20) +
+               " MB a packet may be here (a corrupt file?)",
+           at);
+    }
+    packet.bytes.resize(static_cast<std::size_t>(record));
+    read_exact(packet.bytes.data() + kPacketStartSize,
+               static_cast<std::size_t>(record) - kPacketStartSize, at + kPacketStartSize);
+  }
   packet.offset = at;
   packet.header_type = info.header_type;
   offset_ = at + record;
@@ -133,7 +147,8 @@ bool XtfReader::next_raw(XtfRawPacket& packet) {
 
 bool XtfReader::next(XtfRecord& record) {
   if (!next_raw(record.packet)) return false;
-  record.is_ping = record.packet.header_type == kHeaderTypeSonar;
+  // a skipped packet is not decoded
+  record.is_ping = record.packet.header_type == kHeaderTypeSonar && !record.packet.skipped;
   if (record.is_ping) {
     const std::uint64_t at = record.packet.offset;
     try {

@@ -33,7 +33,14 @@ struct XtfRawPacket {
   std::uint64_t offset = 0;         // byte offset of the packet in the file
   std::uint8_t header_type = 0;     // HeaderType of its packet start
   std::vector<std::uint8_t> bytes;  // the whole record: NumBytesThisRecord bytes incl. padding
+  std::uint64_t record_bytes = 0;   // NumBytesThisRecord
+  // larger than XtfReader::skip_larger_than: not read (bytes: its 14-byte start only)
+  bool skipped = false;
 };
+
+// The largest packet a reader reads (a corrupt length field must not make it allocate gigabytes):
+// 64 MB, hundreds of times a real ping (two channels of 65,535 16-bit samples are 262 kB).
+inline constexpr std::uint64_t kMaxXtfRecordBytes = std::uint64_t{64} << 20;
 
 // What XtfReader::next() returns: the raw packet, and for a sonar ping its decoded form.
 struct XtfRecord {
@@ -70,6 +77,10 @@ class XtfReader {
   bool next(XtfRecord& record);
   // Reads the next packet without decoding it; false at the end of the file.
   bool next_raw(XtfRawPacket& packet);
+  // Packets longer than `bytes` are skipped by seeking past them, not read (XtfRawPacket::skipped;
+  // next() does not decode them): `replay` sends none longer than a datagram. Others longer than
+  // kMaxXtfRecordBytes are a format error.
+  void skip_larger_than(std::uint64_t bytes) { skip_larger_than_ = bytes; }
 
  private:
   struct FileCloser {
@@ -86,6 +97,7 @@ class XtfReader {
   std::vector<std::uint8_t> header_bytes_;
   XtfReadStats stats_;
   bool failed_ = false;
+  std::uint64_t skip_larger_than_ = UINT64_MAX;
 };
 
 // Every sonar ping of a file, with its header and the packet counts.

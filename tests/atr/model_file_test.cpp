@@ -1,6 +1,8 @@
 // The model file: save -> load gives the same model and the same scores, bit for bit; the byte
 // layout is as documented; bad magic, versions, truncation, trailing bytes, corruption and
 // inconsistent contents are clear errors.
+#include <sys/stat.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
@@ -333,6 +335,14 @@ TEST_CASE("model file: file errors name the path") {
                     Catch::Contains("text.slpca") && Catch::Contains("bad magic"));
   CHECK_THROWS_WITH(save_model(trained(false), dir.file("no/such/dir/m.slpca")),
                     Catch::Contains("cannot create"));
+  // not files: refused by what they are, before a byte is read (/dev/zero would be read until
+  // memory runs out, a FIFO would block for ever)
+  CHECK_THROWS_WITH(load_model("/dev/zero"),
+                    Catch::Contains("'/dev/zero'") && Catch::Contains("a character device"));
+  CHECK_THROWS_WITH(load_model(dir.path().string()),
+                    Catch::Contains(dir.path().string()) && Catch::Contains("a directory"));
+  REQUIRE(::mkfifo(dir.file("fifo.slpca").c_str(), 0600) == 0);
+  CHECK_THROWS_WITH(load_model(dir.file("fifo.slpca")), Catch::Contains("a FIFO"));
 }
 
 TEST_CASE("model file: a pre-processing model round-trips; version 1 reads as none") {

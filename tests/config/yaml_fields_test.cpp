@@ -2,10 +2,13 @@
 // wrong types, unknown and duplicate keys, suggestions, line numbers and the message format.
 #include "config/loader/yaml_fields.h"
 
+#include <sys/stat.h>
+
 #include <catch2/catch.hpp>
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <string>
@@ -440,6 +443,16 @@ TEST_CASE("yaml_fields: documents, syntax errors and files") {
   CHECK(missing.file == dir.file("nope.yaml"));
   CHECK(missing.problem == "no such file");
   CHECK(contains(error_of([&] { read_text_file(dir.path().string()); }).problem, "is a directory"));
+  // a FIFO (no writer: an open would block for ever) and a device are refused unopened
+  REQUIRE(::mkfifo(dir.file("fifo.yaml").c_str(), 0600) == 0);
+  CHECK(contains(error_of([&] { read_text_file(dir.file("fifo.yaml")); }).problem,
+                 "not a regular file"));
+  CHECK(contains(error_of([] { read_text_file("/dev/zero"); }).problem, "not a regular file"));
+  // over 64 MB (sparse): refused by its size
+  { std::ofstream(dir.file("huge.yaml")); }
+  std::filesystem::resize_file(dir.file("huge.yaml"), kMaxYamlFileBytes + 1);
+  CHECK(contains(error_of([&] { read_text_file(dir.file("huge.yaml")); }).problem,
+                 "larger than 64 MB"));
   {
     std::ofstream out(dir.file("ok.yaml"));
     out << "a: 1\n";

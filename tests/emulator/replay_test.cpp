@@ -1,10 +1,13 @@
 #include "emulator/replay.h"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <atomic>
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iterator>
@@ -430,3 +433,64 @@ TEST_CASE("replay rate: parsing") {
 
 // ---------------------------------------------------------------------------------------------
 // candump replay
+
+TEST_CASE("replay xtf: a record claiming 2.1 GB is skipped by seeking, never read into memory") {
+  // the real file's header and first ping, a packet whose NumBytesThisRecord is 2.1e9 (a sparse
+  // file: the disk holds almost nothing of it), then the second ping again
+  TempDir dir("replay-oversize");
+  const std::vector<std::uint8_t> real = read_bytes(kRealXtf);
+  constexpr std::size_t kPing = 4480;  // the real pings' packet size
+  std::vector<std::uint8_t> head(real.begin(), real.begin() + 1024 + kPing);
+  const std::uint32_t huge = 2'100'000'000u;
+  const std::uint8_t start[14] = {0xCE,
+                                  0xFA,
+                                  0,
+                                  0,
+                                  2,
+                                  0,
+                                  0,
+                                  0,
+                                  0,
+                                  0,
+                                  static_cast<std::uint8_t>(huge),
+                                  static_cast<std::uint8_t>(huge >> 8),
+                                  static_cast<std::uint8_t>(huge >> 16),
+                                  static_cast<std::uint8_t>(huge >> 24)};
+  head.insert(head.end(), start, start + 14);
+  const std::string path = dir.file("huge.xtf");
+  write_bytes(path, head);
+  std::filesystem::resize_file(path, 1024 + kPing + huge);
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::app);
+    out.write(reinterpret_cast<const char*>(real.data() + 1024 + kPing), kPing);
+  }
+  rusage before{};
+  getrusage(RUSAGE_SELF, &before);
+  SimulatedClock clock(kClockStartNs);
+  std::vector<std::string> warnings;
+  ReplayOptions options;
+  options.rate.max = true;
+  options.on_warning = [&](const std::string& w) { warnings.push_back(w); };
+  std::vector<std::size_t> sent;
+  const ReplaySummary s = replay_xtf(
+      path,
+      [&](std::span<const std::uint8_t> d) {
+        sent.push_back(d.size());
+        return true;
+      },
+      clock, options);
+  rusage after{};
+  getrusage(RUSAGE_SELF, &after);
+  CHECK(s.skipped == 1);
+  CHECK(s.pings_sent == 2);
+  CHECK(sent == std::vector<std::size_t>{1024, kPing, kPing});
+  REQUIRE(warnings.size() == 1);
+  CHECK_THAT(warnings[0], Catch::Contains("2100000000 bytes") && Catch::Contains("skipped"));
+  // the peak resident memory grew by far less than the record (kB)
+  CHECK(after.ru_maxrss - before.ru_maxrss < 200'000);
+  // the readers that do read packets whole refuse it with the reason, without reading it
+  xtf::XtfReader reader(path);
+  xtf::XtfRecord record;
+  REQUIRE(reader.next(record));
+  CHECK_THROWS_WITH(reader.next(record), Catch::Contains("more than the 64 MB a packet may be"));
+}

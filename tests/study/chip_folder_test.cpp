@@ -1,5 +1,8 @@
 // Reading folders of PNG and JPEG chips (one subfolder per class, optional labels.csv) and the
-// errors a user can make: mixed sizes, an empty class, non-PNG files, bad labels.
+// errors a user can make: mixed sizes, an empty class, non-PNG files, bad labels; and what is not
+// a chip at all: a FIFO, a symbolic link loop, a class name not in UTF-8.
+#include <sys/stat.h>
+
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -261,4 +264,45 @@ TEST_CASE("chip folder: a chip image over 4096 x 4096 pixels is refused before d
                          std::vector<std::uint8_t>(std::size_t{4097} * 4096, 9));
   CHECK_THROWS_WITH(read_chip_file(dir.file("big.png")),
                     Catch::Contains("declares 4097 x 4096 pixels"));
+}
+
+TEST_CASE(
+    "chip folder: a FIFO, a symbolic link loop and a name not in UTF-8 are refused or skipped") {
+  testing::TempDir dir("atr-chip-folder-hostile");
+  const fs::path root = dir.path() / "chips";
+  write_chip(root / "a" / "1.png", 8, 8, 1);
+  write_chip(root / "b" / "2.png", 8, 8, 2);
+  // a FIFO named like a chip: it would block the reader's open for ever (no writer comes)
+  REQUIRE(::mkfifo((root / "a" / "x.png").c_str(), 0600) == 0);
+  CHECK_THROWS_WITH(read_chip_folder(root.string()),
+                    Catch::Contains("x.png") && Catch::Contains("not a regular file (a FIFO)"));
+  // a symbolic link loop named like a chip
+  fs::create_symlink(root / "b" / "loop2.png", root / "b" / "loop1.png");
+  fs::create_symlink(root / "b" / "loop1.png", root / "b" / "loop2.png");
+  // a class folder whose name is not UTF-8 (Latin-1 'é')
+  write_chip(root / "\xE9pave" / "3.png", 8, 8, 3);
+  ChipFolderOptions o;
+  o.skip_bad = true;
+  const ChipFolder f = read_chip_folder(root.string(), o);
+  CHECK(f.classes == std::vector<std::string>{"a", "b"});
+  REQUIRE(f.chips.size() == 2);
+  std::vector<std::string> skipped;
+  for (const auto& s : f.skipped)
+    skipped.push_back(s.source + ": " + s.reason);
+  INFO(Catch::Detail::stringify(skipped));
+  REQUIRE(skipped.size() == 4);
+  // the class folders are listed first, then their entries, then the pixels are read
+  CHECK_THAT(skipped[0], Catch::StartsWith("\\xE9pave: class folder") &&
+                             Catch::Contains("not valid UTF-8") &&
+                             Catch::Contains("the class is left out"));
+  CHECK_THAT(skipped[1],
+             Catch::StartsWith("b/loop1.png: cannot read") && Catch::Contains("symbolic links"));
+  CHECK_THAT(skipped[2], Catch::StartsWith("b/loop2.png: cannot read"));
+  CHECK_THAT(skipped[3], Catch::StartsWith("a/x.png: chip") && Catch::Contains("a FIFO"));
+  // without skip_bad the name is refused, printable
+  fs::remove(root / "a" / "x.png");
+  fs::remove(root / "b" / "loop1.png");
+  fs::remove(root / "b" / "loop2.png");
+  CHECK_THROWS_WITH(read_chip_folder(root.string()),
+                    Catch::Contains("\\xE9pave") && Catch::Contains("not valid UTF-8"));
 }

@@ -138,6 +138,23 @@ AgentObject& Agent::object_for(const atr::Contact& c) {
 }
 
 void Agent::on_contact(const atr::Contact& c) {
+  std::string text = atr::contact_json(c);
+  if (const auto it = seen_.find(c.id); it != seen_.end()) {
+    if (it->second == text) {
+      ++duplicates_;
+    } else {
+      ++conflicts_;
+      events_.push_back(format("contact %llu reported again with other content: ignored",
+                               static_cast<unsigned long long>(c.id)));
+    }
+    return;
+  }
+  seen_.emplace(c.id, std::move(text));
+  seen_order_.push_back(c.id);
+  if (seen_order_.size() > kRememberedContacts) {
+    seen_.erase(seen_order_.front());
+    seen_order_.pop_front();
+  }
   AgentObject& o = object_for(c);
   const std::optional<TrackSample> seen = look_sample(c);
   o.looks.push_back(c);

@@ -22,6 +22,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "atr/contact.h"
@@ -98,6 +99,8 @@ struct AgentObject {
   ObjectDecision decision;
 };
 
+inline constexpr std::size_t kRememberedContacts = 1u << 16;
+
 class Agent {
  public:
   Agent(const AgentParams& params, std::vector<Leg> survey, const VehicleState& start);
@@ -105,8 +108,13 @@ class Agent {
   // Advances the vehicle by dt_s. seabed_depth_m: the measured depth of the seabed below the
   // surface (navigation depth + altitude), for altitude keeping; without it, depth is held.
   void step(double dt_s, std::optional<double> seabed_depth_m);
-  // A contact of the onboard consumer, received now (state().t_s).
+  // A contact of the onboard consumer, received now (state().t_s). An id names one report: a
+  // contact whose id was taken already is ignored and counted, whether its content is the same
+  // (a datagram delivered twice) or not (a conflicting report), so that a repeat can never add a
+  // look (the last kRememberedContacts ids are remembered).
   void on_contact(const atr::Contact& c);
+  std::uint64_t duplicate_contacts() const { return duplicates_; }
+  std::uint64_t conflicting_contacts() const { return conflicts_; }
 
   const VehicleState& state() const { return state_; }
   const AgentParams& params() const { return params_; }
@@ -143,6 +151,10 @@ class Agent {
   std::vector<std::string> events_;
   double travelled_m_ = 0.0, detour_m_ = 0.0, detour_s_ = 0.0;
   bool relook_due_ = false;  // after the survey: an object may still be re-looked
+  // the ids taken (with each contact's JSON form), oldest first
+  std::unordered_map<std::uint64_t, std::string> seen_;
+  std::deque<std::uint64_t> seen_order_;
+  std::uint64_t duplicates_ = 0, conflicts_ = 0;
 };
 
 }  // namespace sonarloop::autonomy

@@ -135,14 +135,21 @@ void ContactListener::run() {
     }
     ++received_;
     std::lock_guard lock(mu_);
+    if (queue_.size() >= kMaxQueuedContacts) {
+      ++dropped_;
+      continue;
+    }
     queue_.push_back(std::move(*c));
   }
 }
 
-std::deque<atr::Contact> ContactListener::take() {
+std::deque<atr::Contact> ContactListener::take(std::size_t max) {
   std::lock_guard lock(mu_);
   std::deque<atr::Contact> out;
-  out.swap(queue_);
+  while (!queue_.empty() && out.size() < max) {
+    out.push_back(std::move(queue_.front()));
+    queue_.pop_front();
+  }
   return out;
 }
 
@@ -250,8 +257,14 @@ std::string agent_report_json(const autonomy::Agent& agent, const AgentRunInfo& 
   w.field("relook_distance_m", agent.detour_distance_m(), 8);
   w.field("relook_time_s", agent.detour_time_s(), 8);
   w.field("contacts_received", info.contacts_received);
+  // ignored repeats of an id (agent.h), only when there were some
+  if (agent.duplicate_contacts() + agent.conflicting_contacts() > 0) {
+    w.field("contacts_duplicated", agent.duplicate_contacts());
+    w.field("contacts_conflicting", agent.conflicting_contacts());
+  }
   if (!info.lockstep) {
     w.field("contacts_malformed", info.contacts_malformed);
+    if (info.contacts_dropped) w.field("contacts_dropped", info.contacts_dropped);
     w.field("poses_sent", info.poses_sent);
     w.key("nav").begin_object();
     w.field("frames", info.nav.frames).field("decoded", info.nav.decoded);

@@ -54,15 +54,24 @@ class NavListener {
 };
 
 // Receives contact datagrams on a thread; take() hands over those received since the last call.
+// A step's share of the contacts, and how many may wait (beyond: dropped, counted).
+inline constexpr std::size_t kMaxContactsPerTake = 64;
+inline constexpr std::size_t kMaxQueuedContacts = 4096;
+
 class ContactListener {
  public:
   explicit ContactListener(const net::HostPort& address);
   ~ContactListener();
   ContactListener(const ContactListener&) = delete;
   ContactListener& operator=(const ContactListener&) = delete;
-  std::deque<atr::Contact> take();
+  // The contacts received since the last call, oldest first, at most `max` (the rest stay for the
+  // next call): a burst is handed over a step at a time, never all at once.
+  std::deque<atr::Contact> take(std::size_t max = kMaxContactsPerTake);
   std::uint64_t received() const { return received_.load(); }
+  // lines that are not a valid contact (contact_decision.h: malformed or out of range)
   std::uint64_t malformed() const { return malformed_.load(); }
+  // contacts dropped because kMaxQueuedContacts were waiting (a flood)
+  std::uint64_t dropped() const { return dropped_.load(); }
   std::string describe() const { return rx_.describe(); }
   std::uint16_t port() const { return rx_.bound_port(); }  // the one bound (port 0: any free)
 
@@ -71,7 +80,7 @@ class ContactListener {
   net::UdpReceiver rx_;
   std::mutex mu_;
   std::deque<atr::Contact> queue_;
-  std::atomic<std::uint64_t> received_{0}, malformed_{0};
+  std::atomic<std::uint64_t> received_{0}, malformed_{0}, dropped_{0};
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };
@@ -102,7 +111,7 @@ struct AgentRunInfo {
   double wall_time_s = 0.0;
   double survey_plan_m = 0.0;
   bool stopped = false;  // by SIGINT / SIGTERM
-  std::uint64_t contacts_received = 0, contacts_malformed = 0, poses_sent = 0;
+  std::uint64_t contacts_received = 0, contacts_malformed = 0, contacts_dropped = 0, poses_sent = 0;
   NavFix nav;
   double nav_offset_mean_m = 0.0, nav_offset_max_m = 0.0;  // |nav - model| on receipt
 };

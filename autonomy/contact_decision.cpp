@@ -25,6 +25,41 @@ double mean_distance(const atr::Contact& c) {
   return mean > 0.0 && std::isfinite(mean) ? mean : kMissing;
 }
 
+// Every number of the line is finite (strtod reads 1e999 as infinity; the contact format writes
+// a non-finite value as null) and the ids are positive integers a double holds exactly; the
+// position is on Earth. "" when it is, else what is wrong.
+std::string out_of_range(const JsonLine& j) {
+  for (const auto& [key, text] : j.members()) {
+    const auto v = j.number(key);
+    if (v && !std::isfinite(*v)) return "field " + key + " is not a finite number";
+  }
+  if (const auto scores = j.object("scores")) {
+    for (const auto& [name, text] : scores->members()) {
+      const auto v = scores->number(name);
+      if (v && !std::isfinite(*v)) return "score " + name + " is not a finite number";
+    }
+  }
+  for (const char* key : {"contact", "object"}) {
+    const auto v = j.number(key);
+    if (!v) continue;
+    if (*v != std::floor(*v) || *v < (std::string(key) == "contact" ? 1.0 : 0.0) ||
+        *v > kMaxContactId) {
+      return std::string("field ") + key + " is not an id (a whole number from 1 to 2^53)";
+    }
+  }
+  for (const char* key : {"north_m", "east_m"}) {
+    if (std::abs(j.number(key).value_or(0.0)) > kMaxContactOffset_m) {
+      return std::string("field ") + key + " is more than 1000 km from the origin";
+    }
+  }
+  if (j.number("time_utc_ns").value_or(0.0) < 0.0) return "field time_utc_ns is negative";
+  const double looks = j.number("looks").value_or(1.0);
+  if (looks < 1.0 || looks > kMaxContactLooks || looks != std::floor(looks)) {
+    return "field looks is not a whole number from 1 to 1000";
+  }
+  return "";
+}
+
 void read_scores(const JsonLine& j, atr::Contact& c) {
   const auto scores = j.object("scores");
   if (!scores) return;
@@ -43,6 +78,10 @@ std::optional<atr::Contact> contact_from_json(std::string_view line, std::string
   const auto east = j->number("east_m");
   if (!id || !north || !east) {
     error = "a contact needs the fields contact, north_m and east_m";
+    return std::nullopt;
+  }
+  if (const std::string wrong = out_of_range(*j); !wrong.empty()) {
+    error = wrong;
     return std::nullopt;
   }
   atr::Contact c;

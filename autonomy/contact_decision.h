@@ -47,8 +47,17 @@
 
 namespace sonarloop::autonomy {
 
+// Bounds of an acceptable contact: ids a double holds exactly, positions within 1000 km of the
+// frame's origin, at most 1000 looks.
+inline constexpr double kMaxContactId = 9007199254740992.0;  // 2^53
+inline constexpr double kMaxContactOffset_m = 1e6;
+inline constexpr double kMaxContactLooks = 1000.0;
+
 // The contact of one JSON line of the onboard consumer (atr/contact.h). nullopt with `error`
-// on malformed input or a missing required field (contact, north_m, east_m).
+// on malformed input, a missing required field (contact, north_m, east_m), or a value out of
+// range: any number not finite (1e999), an id that is not a whole number from 1 (contact) or 0
+// (object) to 2^53, a position beyond kMaxContactOffset_m, a negative time, looks outside 1..1000.
+// The line is untrusted input (it arrives over UDP).
 std::optional<atr::Contact> contact_from_json(std::string_view line, std::string& error);
 
 double decision_margin(const atr::Contact& c);

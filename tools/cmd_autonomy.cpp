@@ -233,6 +233,7 @@ int run_autonomy(const std::vector<std::string>& argv) {
   info.stopped = stop_requested();
   info.contacts_received = contacts.received();
   info.contacts_malformed = contacts.malformed();
+  info.contacts_dropped = contacts.dropped();
   info.poses_sent = pose.sent();
   info.nav = nav.latest();
   print_result(agent, info);

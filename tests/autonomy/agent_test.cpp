@@ -244,3 +244,31 @@ TEST_CASE("an object the gate doubts is uncertain however sure its class") {
         Approx(1.0 / (1.0 + std::sqrt((0.7 / 0.3) * (0.1 / 0.9)))));
   CHECK(agent.objects()[0].decision.state == FinalState::kConfirmed);
 }
+
+TEST_CASE("a contact id is one look: a repeat is ignored, same content or not, and counted") {
+  AgentParams p;
+  p.relooks = false;
+  Agent agent = one_leg_agent(p);
+  const atr::Contact c = contact_seen(7, {30.0, 20.0}, agent.state());
+  agent.on_contact(c);
+  agent.take_events();
+  // the same datagram delivered twice: still one look, the decision unchanged
+  agent.on_contact(c);
+  REQUIRE(agent.objects().size() == 1);
+  CHECK(agent.objects()[0].looks.size() == 1);
+  CHECK(agent.objects()[0].decision.state == FinalState::kUncertain);
+  CHECK(agent.duplicate_contacts() == 1);
+  CHECK(agent.take_events().empty());
+  // the id again with another class: ignored, said once
+  atr::Contact other = c;
+  other.class_name = "rockan";
+  agent.on_contact(other);
+  CHECK(agent.objects()[0].looks.size() == 1);
+  CHECK(agent.conflicting_contacts() == 1);
+  const std::vector<std::string> events = agent.take_events();
+  REQUIRE(events.size() == 1);
+  CHECK_THAT(events[0], Catch::Contains("contact 7 reported again with other content"));
+  // a new id is a second look
+  agent.on_contact(contact_seen(8, {30.0, 20.0}, agent.state()));
+  CHECK(agent.objects()[0].looks.size() == 2);
+}

@@ -86,3 +86,26 @@ TEST_CASE("autonomy io: contacts arrive whole; a malformed datagram is counted, 
   CHECK(taken[0].class_name == "manta");
   CHECK(contacts.take().empty());  // handed over once
 }
+
+TEST_CASE("autonomy io: a burst is handed over a step's share at a time; a flood is bounded") {
+  autonomy::ContactListener contacts(net::parse_host_port("127.0.0.1:0"));
+  net::UdpSender tx(net::parse_host_port("127.0.0.1:" + std::to_string(contacts.port())));
+  // 1000 more than kMaxQueuedContacts, nobody taking, in batches of 500 that the socket buffer
+  // holds (each received before the next is sent: nothing is lost on the way)
+  const std::size_t burst = autonomy::kMaxQueuedContacts + 1000;
+  for (std::size_t k = 1; k <= burst; ++k) {
+    atr::Contact c;
+    c.id = k;
+    const std::string line = atr::contact_json(c);
+    tx.send(std::span(reinterpret_cast<const std::uint8_t*>(line.data()), line.size()));
+    if (k % 500 == 0 || k == burst) REQUIRE(wait_until([&] { return contacts.received() == k; }));
+  }
+  CHECK(contacts.dropped() == 1000);
+  std::size_t taken = 0;
+  for (auto part = contacts.take(); !part.empty(); part = contacts.take()) {
+    CHECK(part.size() <= autonomy::kMaxContactsPerTake);
+    taken += part.size();
+  }
+  CHECK(taken == autonomy::kMaxQueuedContacts);
+  CHECK(contacts.received() == taken + contacts.dropped());
+}

@@ -168,3 +168,30 @@ TEST_CASE("the mine margin is the two groups' relative gap, over the looks") {
   const atr::Contact bare = look("hemisphere", {{"hemisphere", 40.0}, {"manta", 50.0}}, false);
   CHECK(std::isnan(decide({bare}, 0.05).fused.mine_margin));
 }
+
+TEST_CASE("a contact line out of range is refused with the reason (the line is untrusted input)") {
+  const std::string ok = R"({"contact":3,"north_m":1.5,"east_m":-2.0,"looks":2,"object":1})";
+  std::string error;
+  REQUIRE(contact_from_json(ok, error));
+  const auto refused = [](const std::string& line, const std::string& why) {
+    std::string e;
+    INFO(line);
+    CHECK_FALSE(contact_from_json(line, e));
+    CHECK_THAT(e, Catch::Contains(why));
+  };
+  // 1e999 reads as infinity: the contact format writes non-finite values as null
+  refused(R"({"contact":3,"north_m":1e999,"east_m":0})", "north_m is not a finite number");
+  refused(R"({"contact":3,"north_m":0,"east_m":0,"distance":-1e999})",
+          "distance is not a finite number");
+  refused(R"({"contact":3,"north_m":0,"east_m":0,"scores":{"manta":1e999}})",
+          "score manta is not a finite number");
+  refused(R"({"contact":-15,"north_m":0,"east_m":0})", "contact is not an id");
+  refused(R"({"contact":0,"north_m":0,"east_m":0})", "contact is not an id");
+  refused(R"({"contact":2.5,"north_m":0,"east_m":0})", "contact is not an id");
+  refused(R"({"contact":1e18,"north_m":0,"east_m":0})", "contact is not an id");
+  refused(R"({"contact":3,"north_m":0,"east_m":0,"object":-1})", "object is not an id");
+  refused(R"({"contact":3,"north_m":2e6,"east_m":0})", "north_m is more than 1000 km");
+  refused(R"({"contact":3,"north_m":0,"east_m":0,"time_utc_ns":-5})", "time_utc_ns is negative");
+  refused(R"({"contact":3,"north_m":0,"east_m":0,"looks":0})", "looks is not a whole number");
+  refused(R"({"contact":3,"north_m":0,"east_m":0,"looks":5000})", "looks is not a whole number");
+}

@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -63,7 +64,9 @@ struct Child {
 };
 
 // Starts this binary with `args`, stdout and stderr to `log`, in its own process group (so a
-// terminal's Ctrl-C reaches only the mission, which forwards it once).
+// terminal's Ctrl-C reaches only the mission, which forwards it once). The child gets SIGTERM
+// when the mission dies, however it dies (SIGKILL too: PR_SET_PDEATHSIG), and stops cleanly: no
+// emulator is left following a pose that never comes.
 Child spawn(const std::string& name, const std::vector<std::string>& args, const std::string& log) {
   std::vector<char*> argv;
   std::string self = "/proc/self/exe";
@@ -72,9 +75,12 @@ Child spawn(const std::string& name, const std::vector<std::string>& args, const
   for (auto& a : copy)
     argv.push_back(a.data());
   argv.push_back(nullptr);
+  const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error("fork: " + net::errno_text(errno));
   if (pid == 0) {
+    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (::getppid() != parent) _exit(128 + SIGTERM);  // the mission died before the line above
     ::setpgid(0, 0);
     const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd >= 0) {
@@ -119,6 +125,26 @@ std::string read_file(const std::string& path) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+// Why a child failed, as its log says: its last line with "error:" (else its last line, but for
+// a usage error's "(see ... --help)").
+std::string child_reason(const std::string& log) {
+  std::istringstream in(read_file(log));
+  std::string line, last, error;
+  while (std::getline(in, line)) {
+    if (line.empty() || line.rfind("(see ", 0) == 0) continue;
+    last = line;
+    if (line.find("error:") != std::string::npos) error = line;
+  }
+  return error.empty() ? last : error;
+}
+
+// "NAME ended (status S: REASON; see LOG)"
+std::string child_failure(const Child& c, const std::string& log, const std::string& what) {
+  const std::string reason = child_reason(log);
+  return c.name + " " + what + " (status " + std::to_string(c.status) +
+         (reason.empty() ? "" : ": " + reason) + "; see " + log + ")";
 }
 
 std::string loopback(int port) {
@@ -220,8 +246,7 @@ std::string supervise(std::vector<Child>& children, const Logs& logs, bool quiet
     if (!agent_child.running()) break;
     for (const Child& c : children) {
       if (&c != &agent_child && !c.running() && failure.empty()) {
-        failure = c.name + " ended early (status " + std::to_string(c.status) + ", see " +
-                  logs.path(c.name + ".log") + ")";
+        failure = child_failure(c, logs.path(c.name + ".log"), "ended early");
       }
     }
     if (!failure.empty() && !forwarded) {
@@ -273,7 +298,14 @@ int run_realtime(const Args& args, const std::string& model,
   OutputFile report("--report", report_path);  // opened now: fails before the run
   const bool quiet = args.has("--quiet");
 
-  // set up: the three children's command lines, wired on loopback
+  // set up: the three children's command lines, wired on loopback; no report of an earlier run
+  // in --out may be taken for this one's
+  std::error_code ec;
+  std::filesystem::remove(logs.path("agent.json"), ec);
+  if (ec) {
+    throw std::runtime_error("cannot remove the earlier run's " + logs.path("agent.json") + ": " +
+                             ec.message());
+  }
   const Ports ports;
   std::vector<std::string> scenario_args;
   if (scenario_path) scenario_args = {"--scenario", *scenario_path};
@@ -299,9 +331,12 @@ int run_realtime(const Args& args, const std::string& model,
   // report
   const std::string agent_report = read_file(logs.path("agent.json"));
   if (agent_report.empty()) {
-    std::fprintf(stderr, "mission: the agent wrote no report (status %d, see %s)\n",
-                 children[2].status, logs.path("agent.log").c_str());
-    report.write_and_close("{\"error\": \"the agent wrote no report\"}\n");
+    const std::string why = child_failure(children[2], logs.path("agent.log"), "wrote no report") +
+                            (failure.empty() ? "" : "; " + failure);
+    std::fprintf(stderr, "mission: %s\n", why.c_str());
+    json::Writer w;
+    w.begin_object().field("error", why).end_object();
+    report.write_and_close(w.str() + "\n");
     return 1;
   }
   mission::MissionSummary s;

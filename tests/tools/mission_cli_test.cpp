@@ -6,15 +6,21 @@
 // so high that every contact is uncertain: each must be re-looked from about 90 degrees at the
 // pass range, and at least one object confirmed by its looks. In lock-step the report is the
 // same byte for byte on one render thread or two, paced or not, and the survey is scored. Then
-// Ctrl-C: the mission still writes its report.
+// Ctrl-C: the mission still writes its report; SIGKILL: its processes end with it; an agent that
+// fails: the mission fails with the agent's reason, never scoring an earlier run's report.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <catch2/catch.hpp>
 
 #include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "autonomy/json_line.h"
 #include "tests/support/temp_dir.h"
@@ -214,28 +220,38 @@ TEST_CASE(
   check_relooks(m);
 }
 
-TEST_CASE("--realtime: Ctrl-C stops the mission's three processes and still writes the report",
-          "[realtime]") {
-  testing::TempDir dir("mission_stop");
+namespace {
+
+// Starts `mission --realtime` in `dir` (report mission.json, logs in logs/, stderr to
+// mission.err); returns its pid once its agent flies (nav connected), and whether it did.
+std::pair<pid_t, bool> start_flying_mission(const testing::TempDir& dir) {
   const std::string& model = shared_model();
-  const std::string report = dir.file("mission.json");
-  const std::string log = dir.file("logs/agent.log");
   const pid_t pid = fork();
   REQUIRE(pid >= 0);
   if (pid == 0) {
     std::freopen(dir.file("mission.err").c_str(), "w", stderr);
     execl(kBinary.c_str(), kBinary.c_str(), "mission", kTwoTargetsScenario.c_str(), "--realtime",
           "--model", model.c_str(), "--rate", kRate.c_str(), "--area", kArea.c_str(), "--report",
-          report.c_str(), "--out", dir.file("logs").c_str(), "--quiet",
+          dir.file("mission.json").c_str(), "--out", dir.file("logs").c_str(), "--quiet",
           static_cast<char*>(nullptr));
     _exit(127);
   }
-  // once the agent flies (nav connected), interrupt
   bool flying = false;
   for (int k = 0; k < 1200 && !flying; ++k) {
-    flying = slurp(log).find("nav connected") != std::string::npos;
+    flying = slurp(dir.file("logs/agent.log")).find("nav connected") != std::string::npos;
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
+  return {pid, flying};
+}
+
+}  // namespace
+
+TEST_CASE("--realtime: Ctrl-C stops the mission's three processes and still writes the report",
+          "[realtime]") {
+  testing::TempDir dir("mission_stop");
+  const std::string report = dir.file("mission.json");
+  // once the agent flies (nav connected), interrupt
+  const auto [pid, flying] = start_flying_mission(dir);
   std::this_thread::sleep_for(std::chrono::seconds(2));
   kill(pid, SIGINT);
   int status = 0;
@@ -247,4 +263,80 @@ TEST_CASE("--realtime: Ctrl-C stops the mission's three processes and still writ
   CHECK(m.object("run")->boolean("stopped") == true);
   CHECK(m.object("agent")->boolean("stopped") == true);
   CHECK(m.object("summary")->number("mission_time_s").value_or(0) > 0.0);
+}
+
+TEST_CASE("--realtime: the agent's failure is the mission's, with its reason; no stale report",
+          "[realtime]") {
+  testing::TempDir dir("mission_fail");
+  const std::string& model = shared_model();
+  // an earlier run's agent report in the same --out: it must not be scored as this run's
+  std::filesystem::create_directories(dir.file("logs"));
+  { std::ofstream(dir.file("logs/agent.json")) << R"({"stale": true})"; }
+  const int rc =
+      run_logged(dir,
+                 "mission " + kTwoTargetsScenario + " --realtime --model " + model + " --rate " +
+                     kRate + " --line-spacing 0.001 --report " + dir.file("mission.json") +
+                     " --out " + dir.file("logs") + " --quiet",
+                 "mission");
+  const std::string err = slurp(dir.file("mission.err"));
+  INFO(err);
+  CHECK(rc == 1);
+  // the agent's own reason, in the mission's message and report
+  CHECK_THAT(err, Catch::Contains("agent wrote no report (status 2: ") &&
+                      Catch::Contains("--line-spacing"));
+  const JsonLine m = parse_file(dir.file("mission.json"));
+  CHECK_THAT(m.string("error").value_or(""), Catch::Contains("--line-spacing"));
+  CHECK_FALSE(std::filesystem::exists(dir.file("logs/agent.json")));
+}
+
+namespace {
+
+// The processes whose parent is `pid` (from /proc).
+std::vector<pid_t> children_of(pid_t pid) {
+  std::vector<pid_t> out;
+  for (const auto& e : std::filesystem::directory_iterator("/proc")) {
+    const std::string name = e.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    const std::string stat = slurp(e.path().string() + "/stat");
+    // pid (comm) state ppid ...: after the last ')'
+    const auto close = stat.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream rest(stat.substr(close + 1));
+    char state = 0;
+    pid_t ppid = 0;
+    rest >> state >> ppid;
+    if (ppid == pid) out.push_back(static_cast<pid_t>(std::stoi(name)));
+  }
+  return out;
+}
+
+// Whether `pid` has ended (gone, or a zombie nobody reaped yet).
+bool ended(pid_t pid) {
+  const std::string stat = slurp("/proc/" + std::to_string(pid) + "/stat");
+  const auto close = stat.rfind(')');
+  return close == std::string::npos || stat.substr(close + 2, 1) == "Z";
+}
+
+}  // namespace
+
+TEST_CASE("--realtime: SIGKILL of the mission ends its three processes too", "[realtime]") {
+  testing::TempDir dir("mission_kill");
+  const auto [pid, flying] = start_flying_mission(dir);
+  const std::vector<pid_t> children = children_of(pid);
+  INFO(slurp(dir.file("mission.err")));
+  CHECK(flying);
+  REQUIRE(children.size() == 3);
+  kill(pid, SIGKILL);
+  int status = 0;
+  REQUIRE(waitpid(pid, &status, 0) == pid);
+  // each child got SIGTERM from the kernel when its parent died, and stops cleanly
+  for (pid_t c : children) {
+    bool gone = false;
+    for (int k = 0; k < 200 && !gone; ++k) {
+      gone = ended(c);
+      if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    CHECK(gone);
+    if (!gone) kill(c, SIGKILL);
+  }
 }

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include "config/loader/scenario_loader.h"
@@ -163,14 +164,21 @@ class CsvFile {
   std::FILE* f_ = nullptr;
 };
 
+// The dataset's description; `written`: the chips an interrupted run wrote (the first ones of
+// the job order: indices 0 .. written - 1), said beside count_per_class, which it asked for.
 void write_dataset_json(const fs::path& path, const render::ChipRenderer& r,
-                        const std::string& sonar_name, long long count_per_class) {
+                        const std::string& sonar_name, long long count_per_class,
+                        std::optional<std::size_t> written = std::nullopt) {
   const render::ChipDatasetSpec& spec = r.spec();
   json::Writer w(true);
   w.begin_object();
   w.field("generator", std::string("sonarloop dataset ") + SONARLOOP_VERSION);
   w.field("seed", spec.seed).field("kind", chips::chip_kind_name(spec.kind));
   w.field("count_per_class", static_cast<std::int64_t>(count_per_class));
+  if (written) {
+    w.field("interrupted", true);
+    w.field("chips_written", static_cast<std::uint64_t>(*written));
+  }
   w.key("classes").begin_array();
   for (auto t : spec.classes)
     w.value(targets::target_type_info(t).key);
@@ -381,6 +389,8 @@ int run_dataset(const std::vector<std::string>& argv) {
   bar.finish();
   const double secs = seconds_since(t0);
   if (done < jobs.size()) {
+    // what the folder holds, not what was asked
+    write_dataset_json(out_dir / "dataset.json", renderer, spec.sonar.name, count, written);
     std::fprintf(stderr,
                  "sonarloop dataset: interrupted after %zu of %zu chips; '%s' holds them, each "
                  "with its labels.csv row\n",
@@ -434,7 +444,8 @@ Writes:
                              range_m = ground range; target_row/col = the target's centre in
                              pixels; north_m/east_m = the target's position; label_file = the
                              label image in the chip's folder, with its pixel counts)
-  DIR/dataset.json           the options and the conventions above
+  DIR/dataset.json           the options and the conventions above (after Ctrl-C also
+                             "interrupted": true and "chips_written": N)
 With several --resolution-cm, each resolution is a dataset of its own in DIR/res_<R>cm/ (with
 its labels.csv) and DIR/labels.csv lists them all (file relative to DIR).
 Under `mpirun -np N` (MPI builds: docs/sweep.md) every rank renders every N-th chip and rank 0

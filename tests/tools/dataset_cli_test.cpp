@@ -180,6 +180,14 @@ TEST_CASE("dataset cli: Ctrl-C leaves a consistent folder") {
   CHECK(line_count(out / "labels.csv") >= 6);
   // every PNG has its row and every row its PNG, no partial files
   CHECK(check_dataset(dir, out, -1, 10, 10, "manta,rockan,cuboid,cylinder") == 0);
+  // dataset.json says how many were written (labels.csv: a header and a row per chip), not only
+  // the 2000 per class asked for
+  const std::string json = slurp((out / "dataset.json").string());
+  if (code == 130) {
+    CHECK_THAT(json, Catch::Contains("\"interrupted\": true") &&
+                         Catch::Contains("\"chips_written\": " +
+                                         std::to_string(line_count(out / "labels.csv") - 1)));
+  }
   CHECK(run_quiet("train " + out.string() + " --out " + dir.file("m.slpca")) == 0);
 }
 

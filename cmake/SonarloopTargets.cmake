@@ -28,7 +28,7 @@ endfunction()
 # sanitizer build with clang they carry libFuzzer's coverage instrumentation (CMakeLists.txt,
 # SONARLOOP_FUZZ_IN_TESTS), so that the harnesses of tests/fuzz built there are guided by it.
 set(SONARLOOP_FUZZ_COVERED_LIBRARIES sonarloop_common sonarloop_drivers sonarloop_config
-    sonarloop_emulator sonarloop_atr sonarloop_study)
+    sonarloop_emulator sonarloop_atr sonarloop_study sonarloop_autonomy)
 
 # Include scopes: a target sees the headers of the folders it links, not the whole source tree.
 # Every #include of the project names its folder ("atr/detector.h"), so the include path of a

@@ -52,7 +52,12 @@ std::string out_of_range(const JsonLine& j) {
       return std::string("field ") + key + " is more than 1000 km from the origin";
     }
   }
-  if (j.number("time_utc_ns").value_or(0.0) < 0.0) return "field time_utc_ns is negative";
+  const double t = j.number("time_utc_ns").value_or(0.0);
+  if (t < 0.0 || t > kMaxContactTimeNs) return "field time_utc_ns is not from 0 to 2^62";
+  const double ping = j.number("ping").value_or(0.0);
+  if (ping < 0.0 || ping > 4294967295.0 || ping != std::floor(ping)) {
+    return "field ping is not a whole number from 0 to 2^32 - 1";
+  }
   const double looks = j.number("looks").value_or(1.0);
   if (looks < 1.0 || looks > kMaxContactLooks || looks != std::floor(looks)) {
     return "field looks is not a whole number from 1 to 1000";

@@ -52,11 +52,13 @@ namespace sonarloop::autonomy {
 inline constexpr double kMaxContactId = 9007199254740992.0;  // 2^53
 inline constexpr double kMaxContactOffset_m = 1e6;
 inline constexpr double kMaxContactLooks = 1000.0;
+inline constexpr double kMaxContactTimeNs = 4611686018427387904.0;  // 2^62 ns: year 2116
 
 // The contact of one JSON line of the onboard consumer (atr/contact.h). nullopt with `error`
 // on malformed input, a missing required field (contact, north_m, east_m), or a value out of
 // range: any number not finite (1e999), an id that is not a whole number from 1 (contact) or 0
-// (object) to 2^53, a position beyond kMaxContactOffset_m, a negative time, looks outside 1..1000.
+// (object) to 2^53, a position beyond kMaxContactOffset_m, a time outside 0..2^62 ns, a ping
+// number outside 0..2^32 - 1, looks outside 1..1000.
 // The line is untrusted input (it arrives over UDP).
 std::optional<atr::Contact> contact_from_json(std::string_view line, std::string& error);
 

@@ -191,7 +191,11 @@ TEST_CASE("a contact line out of range is refused with the reason (the line is u
   refused(R"({"contact":1e18,"north_m":0,"east_m":0})", "contact is not an id");
   refused(R"({"contact":3,"north_m":0,"east_m":0,"object":-1})", "object is not an id");
   refused(R"({"contact":3,"north_m":2e6,"east_m":0})", "north_m is more than 1000 km");
-  refused(R"({"contact":3,"north_m":0,"east_m":0,"time_utc_ns":-5})", "time_utc_ns is negative");
+  refused(R"({"contact":3,"north_m":0,"east_m":0,"time_utc_ns":-5})", "time_utc_ns is not from");
+  // the fuzzer's first finding: a time beyond what 64 bits hold
+  refused(R"({"contact":3,"north_m":0,"east_m":0,"time_utc_ns":1.7e55})", "time_utc_ns is not");
+  refused(R"({"contact":3,"north_m":0,"east_m":0,"ping":5e9})", "ping is not a whole number");
+  refused(R"({"contact":3,"north_m":0,"east_m":0,"ping":-1})", "ping is not a whole number");
   refused(R"({"contact":3,"north_m":0,"east_m":0,"looks":0})", "looks is not a whole number");
   refused(R"({"contact":3,"north_m":0,"east_m":0,"looks":5000})", "looks is not a whole number");
 }

@@ -176,8 +176,22 @@ bool PoseMerger::reject_and_warn(std::unique_lock<std::mutex>& lock, const std::
   return false;
 }
 
-void PoseMerger::give_pending_note(std::unique_lock<std::mutex>& lock) {
+void PoseMerger::give_pending_note(std::unique_lock<std::mutex>& lock, std::int64_t now_ns) {
   std::string note = std::exchange(pending_note_, {});
+  // at most one a kRejectWarningIntervalNs, as the rejections (a sender alternating between two
+  // clocks would otherwise be said hundreds of times a second)
+  if (!note.empty()) {
+    if (noted_ && now_ns - last_note_ns_ < kRejectWarningIntervalNs) {
+      ++unnoted_;
+      note.clear();
+    } else {
+      if (unnoted_ > 0)
+        note += " (and " + std::to_string(unnoted_) + " more since the last such note)";
+      noted_ = true;
+      last_note_ns_ = now_ns;
+      unnoted_ = 0;
+    }
+  }
   lock.unlock();
   if (!note.empty() && warn_) warn_(note);
 }
@@ -226,7 +240,7 @@ bool PoseMerger::merge_n2k(const can::CanFrame& frame) {
     pose_.received_ns = t;
     any_ = true;
     ++stats_.updates;
-    give_pending_note(lock);
+    give_pending_note(lock, t);
     return true;
   }
   if (const auto* m = std::get_if<n2k::VesselHeading>(&message)) {
@@ -429,7 +443,7 @@ bool PoseMerger::merge_snapshot(const PoseMessage& msg, bool sequenced, const st
   record_snapshot_locked(m->time_unix_ns != 0 ? stamps_.place(m->time_unix_ns, t) : t);
   any_ = true;
   ++stats_.updates;
-  give_pending_note(lock);
+  give_pending_note(lock, t);
   return true;
 }
 

@@ -67,7 +67,8 @@
 // with the last accepted sample; after reanchor_after consecutive such rejections the source is
 // taken to have really moved (or its clock to have been stepped): the next sample is accepted as
 // the new reference and the samples before it are forgotten, so that one bad fix cannot lock a
-// vehicle out for ever.
+// vehicle out for ever. A re-anchoring is said in a note, at most one per
+// kRejectWarningIntervalNs too (a sender alternating two clocks re-anchors many times a second).
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
@@ -233,7 +234,8 @@ class PoseMerger {
   std::string check_snapshot_locked(const ExternalPose& p, const PoseMessage& m,
                                     std::int64_t arrival_ns);
   // Gives a re-anchoring note, if one is pending, after unlocking.
-  void give_pending_note(std::unique_lock<std::mutex>& lock);
+  // Says a pending re-anchoring (at most one line per kRejectWarningIntervalNs); unlocks.
+  void give_pending_note(std::unique_lock<std::mutex>& lock, std::int64_t now_ns);
   // Counts a rejection, unlocks, and gives the warning line if its turn has come; false.
   bool reject_and_warn(std::unique_lock<std::mutex>& lock, const std::string& what,
                        std::int64_t now_ns);
@@ -263,6 +265,10 @@ class PoseMerger {
   bool warned_ = false;
   std::int64_t last_warning_ns_ = 0;
   std::uint64_t unwarned_ = 0;  // rejections since the last warning line
+  // rate limit of the re-anchoring notes
+  bool noted_ = false;
+  std::int64_t last_note_ns_ = 0;
+  std::uint64_t unnoted_ = 0;  // re-anchorings since the last note
   PoseSourceStats stats_;
 };
 

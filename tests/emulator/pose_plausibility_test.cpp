@@ -3,6 +3,7 @@
 // counted and warned; the limits from a scene.
 #include "emulator/pose_source.h"
 
+#include <algorithm>
 #include <atomic>
 #include <catch2/catch.hpp>
 #include <chrono>
@@ -275,4 +276,33 @@ TEST_CASE("pose merger: implausible NMEA 2000 attitude, depth and position jumps
   REQUIRE(warnings.size() == 2);  // the third within a second of the first: counted, not said
   CHECK_THAT(warnings[0], Contains("127257 Attitude: pitch 5.7 / roll 97.4 degrees"));
   CHECK_THAT(warnings[1], Contains("(and 1 more since the last such warning)"));
+}
+
+TEST_CASE("pose source udp: a sender alternating two clocks is said once a second, not each time") {
+  // groups of reanchor_after messages on clocks an hour apart, at 100 Hz for 10 s: each group
+  // is rejected but for its last message, which re-anchors (200 re-anchorings, 800 rejections)
+  const LocalTangentPlane ltp(kOrigin);
+  CheckedUdpSource c(ltp);
+  const std::int64_t stamp0 = 1'767'225'600'000'000'000;
+  const int n = PoseLimits{}.reanchor_after;
+  c.clock.value = 100 * kSecond;
+  for (std::uint32_t k = 0; k < 1000; ++k) {
+    c.clock.value += kSecond / 100;
+    PoseMessage m = message(k + 1);
+    const bool second_clock = (k / static_cast<std::uint32_t>(n)) % 2 == 1;
+    m.time_unix_ns = stamp0 + static_cast<std::int64_t>(k) * (kSecond / 100) +
+                     (second_clock ? 3600 * kSecond : 0);
+    c.deliver(m);
+  }
+  const auto s = c.source->stats();
+  CHECK(s.reanchors >= 150);
+  CHECK(s.rejected >= 600);
+  // at most one line of each kind a second (11 s of the injected clock), the rest summed
+  const auto w = c.warnings_now();
+  INFO(w.size() << " warnings");
+  CHECK(w.size() <= 2 * 11);
+  CHECK(std::any_of(w.begin(), w.end(), [](const std::string& line) {
+    return line.find("new time base") != std::string::npos &&
+           line.find("more since the last such note") != std::string::npos;
+  }));
 }

@@ -85,11 +85,16 @@ bool apply_memory_lock(std::vector<std::string>& messages) {
   }
   // MCL_ONFAULT: a page is locked once touched, not the whole of every mapping at once (thread
   // stacks, the allocator's reserves: about 300 MB that nothing uses)
-  if (mlockall(MCL_CURRENT | MCL_FUTURE | MCL_ONFAULT) != 0) {
+  if (mlockall(MCL_CURRENT | MCL_FUTURE | MCL_ONFAULT) == 0) {
+    messages.push_back("memory locked (mlockall: current and future pages, once touched)");
+    return true;
+  }
+  // a kernel before 4.4 has no MCL_ONFAULT (EINVAL): every page of every mapping, then
+  if (errno != EINVAL || mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
     messages.push_back("memory not locked: mlockall: " + errno_text(errno));
     return false;
   }
-  messages.push_back("memory locked (mlockall: current and future pages, once touched)");
+  messages.push_back("memory locked (mlockall: current and future pages)");
   return true;
 }
 

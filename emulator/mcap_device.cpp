@@ -78,19 +78,15 @@ std::array<double, 4> enu_flu_quaternion(double yaw, double pitch, double roll) 
 McapDevice::McapDevice(const std::string& path, const LocalTangentPlane& origin,
                        const McapSonarInfo& sonar, mcap::WriterOptions options)
     : origin_(origin), sonar_(sonar), writer_(std::make_unique<mcap::Writer>(path, options)) {
-  const auto schema = [&](const ros2::MessageSchema& s) {
-    return writer_->add_schema(
-        s.name, "ros2msg",
-        {reinterpret_cast<const std::uint8_t*>(s.definition.data()), s.definition.size()});
-  };
+  const auto schema = [&](const ros2::MessageSchema& s) { return add_schema(s); };
   const std::uint16_t sonar_schema = schema(ros2::raw_sonar_image_schema());
   const std::uint16_t image_schema = schema(ros2::image_schema());
-  const std::uint16_t fix_schema = schema(ros2::nav_sat_fix_schema());
+  fix_schema_ = schema(ros2::nav_sat_fix_schema());
   const std::uint16_t pose_schema = schema(ros2::pose_stamped_schema());
   port_ = writer_->add_channel(sonar_schema, "/sidescan/port", "cdr");
   stbd_ = writer_->add_channel(sonar_schema, "/sidescan/starboard", "cdr");
   waterfall_ = writer_->add_channel(image_schema, "/sidescan/waterfall", "cdr");
-  fix_ = writer_->add_channel(fix_schema, "/nav/fix", "cdr");
+  fix_ = writer_->add_channel(fix_schema_, "/nav/fix", "cdr");
   nav_pose_ = writer_->add_channel(pose_schema, "/nav/pose", "cdr");
   truth_ = writer_->add_channel(pose_schema, "/truth/pose", "cdr");
 }
@@ -238,16 +234,18 @@ std::vector<std::string> McapDevice::describe() const {
   return {writer_->path() + ": MCAP for ROS 2 (sidescan, waterfall image, navigation, truth)"};
 }
 
+std::uint16_t McapDevice::add_schema(const ros2::MessageSchema& s) {
+  return writer_->add_schema(
+      s.name, "ros2msg",
+      {reinterpret_cast<const std::uint8_t*>(s.definition.data()), s.definition.size()});
+}
+
 void McapDevice::record_contacts() {
   if (record_contacts_) return;
   record_contacts_ = true;
-  const auto schema = [&](const ros2::MessageSchema& s) {
-    return writer_->add_schema(
-        s.name, "ros2msg",
-        {reinterpret_cast<const std::uint8_t*>(s.definition.data()), s.definition.size()});
-  };
-  contacts_ = writer_->add_channel(schema(ros2::string_schema()), "/contacts", "cdr");
-  contact_fix_ = writer_->add_channel(schema(ros2::nav_sat_fix_schema()), "/contacts/fix", "cdr");
+  contacts_ = writer_->add_channel(add_schema(ros2::string_schema()), "/contacts", "cdr");
+  // the NavSatFix schema the navigation's channel already has
+  contact_fix_ = writer_->add_channel(fix_schema_, "/contacts/fix", "cdr");
 }
 
 void McapDevice::add_contact(McapContact contact) {

@@ -40,6 +40,7 @@
 
 #include "common/geodesy.h"
 #include "drivers/mcap/mcap_writer.h"
+#include "drivers/ros2/ros2_messages.h"
 #include "emulator/device.h"
 #include "sim/frames.h"
 
@@ -95,6 +96,7 @@ class McapDevice final : public Device {
   void write_fix(std::uint16_t channel, std::int64_t utc_ns, double north_m, double east_m,
                  double altitude_m);
   void write_contacts();
+  std::uint16_t add_schema(const ros2::MessageSchema& s);
   void write_pose(std::uint16_t channel, std::int64_t utc_ns, double north_m, double east_m,
                   double depth_m, double yaw, double pitch, double roll);
 
@@ -110,7 +112,7 @@ class McapDevice final : public Device {
   int rows_filled_ = 0, next_row_ = 0, pings_ = 0;
   std::string error_;
   std::int64_t last_ping_utc_ns_ = 0;
-  std::uint16_t contacts_ = 0, contact_fix_ = 0;
+  std::uint16_t contacts_ = 0, contact_fix_ = 0, fix_schema_ = 0;
   bool record_contacts_ = false;
   std::mutex contacts_mutex_;
   std::vector<McapContact> pending_;

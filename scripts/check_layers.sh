@@ -28,8 +28,8 @@
 # The build enforces the same map (cmake/SonarloopTargets.cmake, include scopes): a target sees
 # the headers of the folders it links and no others; this check also catches an include that
 # the build allows through a link a layer should not have.
-# Third-party headers belong to one layer each: Embree to sim, yaml-cpp to config, cpp-httplib
-# to web, MPI to ranks.
+# Third-party headers belong to one layer each: Embree to sim, yaml-cpp to config, MPI to
+# ranks.
 # Usage: scripts/check_layers.sh [SOURCE_ROOT]
 set -euo pipefail
 root=${1:-$(cd "$(dirname "$0")/.." && pwd)}
@@ -57,7 +57,6 @@ declare -A allowed=(
 declare -A third_party=(
   [embree3]="sim"
   [yaml-cpp]="config"
-  [httplib.h]="web"
   [mpi.h]="ranks"
   [catch2]="tests"
 )

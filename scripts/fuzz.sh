@@ -36,7 +36,7 @@ if [ "$seconds" = "--runs" ]; then
   seconds=86400  # the runs end it
 fi
 all=(xtf_decode xtf_file candump_line socketcand n2k_decode pose_message imc_decode model_file
-     scenario_yaml stream_receiver png_chip contact_line)
+     scenario_yaml stream_receiver png_chip contact_line http_request)
 harnesses=("$@")
 if [ ${#harnesses[@]} -eq 0 ]; then harnesses=("${all[@]}"); fi
 

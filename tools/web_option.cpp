@@ -3,15 +3,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "web/web_server.h"
-
 namespace sonarloop::tools {
 
 std::optional<net::HostPort> web_option(const Args& args) {
   const auto text = args.get("--web");
   if (!text) return std::nullopt;
-  if (!web::web_available())
-    throw UsageError(std::string("--web: ") + web::WebUnavailable().what());
   // PORT alone: the loopback address
   const bool port_only = text->find_first_not_of("0123456789") == std::string::npos;
   try {

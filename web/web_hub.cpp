@@ -44,6 +44,7 @@ void WebClient::push(const Event& e) {
     queue_.push_back(e);
   }
   cv_.notify_one();
+  if (wake_) wake_();
 }
 
 WebClient::Next WebClient::next(Event& out, std::chrono::milliseconds timeout) {
@@ -62,6 +63,7 @@ void WebClient::close() {
     closed_ = true;
   }
   cv_.notify_all();
+  if (wake_) wake_();
 }
 
 std::uint64_t WebClient::delivered() const {
@@ -226,8 +228,8 @@ void WebHub::publish_pending_stats() {
   deliver(std::make_shared<const std::string>(sse_event("stats", stats_json_locked())));
 }
 
-std::shared_ptr<WebClient> WebHub::subscribe() {
-  auto client = std::make_shared<WebClient>(options_.client_queue_events);
+std::shared_ptr<WebClient> WebHub::subscribe(std::function<void()> wake) {
+  auto client = std::make_shared<WebClient>(options_.client_queue_events, std::move(wake));
   std::lock_guard lock(mutex_);
   if (closed_ || clients_.size() >= static_cast<std::size_t>(options_.max_clients)) {
     ++counters_.clients_refused;

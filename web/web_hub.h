@@ -24,6 +24,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -59,12 +60,15 @@ struct WebStats {
 class WebClient {
  public:
   enum class Next { kEvent, kTimeout, kClosed };
-  explicit WebClient(std::size_t capacity) : capacity_(capacity) {}
+  // `wake` (optional) is called after each push and at close, outside the client's lock, from
+  // the pushing thread: the server's event loop waits on it instead of on next().
+  explicit WebClient(std::size_t capacity, std::function<void()> wake = {})
+      : capacity_(capacity), wake_(std::move(wake)) {}
 
   // Queues an event; drops (and counts) the oldest when full. Never waits for the reader.
   void push(const Event& e);
-  // Waits up to `timeout` for the next event; after close(), the events still queued, then
-  // kClosed.
+  // Waits up to `timeout` (zero: not at all) for the next event; after close(), the events
+  // still queued, then kClosed.
   Next next(Event& out, std::chrono::milliseconds timeout);
   // Refuses further events.
   void close();
@@ -74,6 +78,7 @@ class WebClient {
 
  private:
   const std::size_t capacity_;
+  const std::function<void()> wake_;
   mutable std::mutex mutex_;
   std::condition_variable cv_;
   std::deque<Event> queue_;
@@ -123,8 +128,9 @@ class WebHub {
   // catch-up). `data` is one line of JSON.
   void broadcast(std::string_view name, std::string_view data);
 
-  // A new client, with the catch-up queued; null when max_clients are watching.
-  std::shared_ptr<WebClient> subscribe();
+  // A new client, with the catch-up queued; null when max_clients are watching. `wake`: see
+  // WebClient.
+  std::shared_ptr<WebClient> subscribe(std::function<void()> wake = {});
   void unsubscribe(const std::shared_ptr<WebClient>& client);
 
   // The latest statistics with the hub's counters, one JSON object (GET /stats.json).

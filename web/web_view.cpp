@@ -49,11 +49,14 @@ WebStats web_stats_of(const atr::OnboardStats& s, double cpu_percent) {
 
 void print_web_summary(const WebView& view) {
   const WebHubCounters c = view.hub.counters();
+  const WebServerCounters s = view.server.counters();
   std::fprintf(stderr,
                "  web: %llu viewers (%llu refused), %llu lines, %llu events sent, %llu dropped "
-               "(slow browsers), %llu pings not shown\n",
+               "(slow browsers), %llu pings not shown; %llu connections, %llu requests, %llu "
+               "refused as malformed, %llu timed out, %llu replaced at the cap\n",
                ull(c.clients_total), ull(c.clients_refused), ull(c.lines), ull(c.events_sent),
-               ull(c.events_dropped), ull(c.pings_not_shown));
+               ull(c.events_dropped), ull(c.pings_not_shown), ull(s.connections), ull(s.requests),
+               ull(s.bad_requests), ull(s.timeouts), ull(s.evicted));
 }
 
 CpuMeter::CpuMeter()

@@ -32,7 +32,9 @@ std::unique_ptr<WebView> open_web_view(const std::optional<net::HostPort>& addre
 // The onboard consumer's statistics as the page shows them.
 WebStats web_stats_of(const atr::OnboardStats& s, double cpu_percent);
 
-// "  web: 2 viewers, 1234 events sent, 0 dropped (slow browsers), 0 pings not shown".
+// "  web: 2 viewers (0 refused), 669 lines, 634 events sent, 0 dropped (slow browsers), 0 pings
+// not shown; 5 connections, 7 requests, 0 refused as malformed, 0 timed out, 0 replaced at the
+// cap".
 void print_web_summary(const WebView& view);
 
 // CPU use of this process since construction, % of one core (for `onboard`).

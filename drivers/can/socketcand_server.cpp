@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "drivers/can/socketcand_protocol.h"
+#include "drivers/net/tcp_listener.h"
 
 namespace sonarloop::can {
 namespace {
@@ -30,11 +31,6 @@ constexpr char kModeUnsupported[] = "< error only rawmode is supported >";
 constexpr char kUnknownCommand[] = "< error unknown command >";
 constexpr char kBadSend[] = "< error malformed send >";
 constexpr std::size_t kReadChunk = 4096;
-
-bool set_nonblocking(int fd) {
-  const int flags = ::fcntl(fd, F_GETFL, 0);
-  return flags >= 0 && ::fcntl(fd, F_SETFL, flags | O_NONBLOCK) == 0;
-}
 
 bool would_block(int err) {
   return err == EAGAIN || err == EWOULDBLOCK;
@@ -116,16 +112,10 @@ SocketcandServer::SocketcandServer(const net::HostPort& listen_address,
     : options_(std::move(options)), bound_(listen_address) {
   if (options_.client_backlog_bytes < 1024) options_.client_backlog_bytes = 1024;
   const std::string where = net::to_string(listen_address);
-  const net::SocketAddress addr = net::resolve(listen_address);
-  listen_fd_.reset(::socket(addr.family(), SOCK_STREAM | SOCK_CLOEXEC, 0));
-  if (!listen_fd_.valid())
-    throw std::runtime_error("socketcand server on " + where +
-                             ": socket() failed: " + net::errno_text(errno));
-  // lets a restarted server bind while old connections linger in TIME_WAIT; a live listener on
-  // the port still makes bind() fail with EADDRINUSE
-  const int one = 1;
-  ::setsockopt(listen_fd_.get(), SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
-  if (::bind(listen_fd_.get(), addr.get(), addr.length) != 0) {
+  // SOMAXCONN: with an accept queue of 16, 50 clients connecting at once waited for the kernel's
+  // SYN-ACK retries past their timeout (issue 11 section 4; the 50-client test)
+  listen_fd_ = net::listen_tcp(listen_address);
+  if (!listen_fd_.valid()) {
     const int err = errno;
     std::string hint;
     if (err == EADDRINUSE)
@@ -135,12 +125,6 @@ SocketcandServer::SocketcandServer(const net::HostPort& listen_address,
     throw std::runtime_error("socketcand server: cannot listen on " + where + ": " +
                              net::errno_text(err) + hint);
   }
-  // the longest accept queue the kernel allows: with a short one (it was 16), 50 clients
-  // connecting at once overflowed it, and the kernel's SYN-ACK retries (1, 2, 4 s...) left some of
-  // them waiting for "< hi >" past their timeout (issue 11 section 4; the 50-client test)
-  if (::listen(listen_fd_.get(), SOMAXCONN) != 0 || !set_nonblocking(listen_fd_.get()))
-    throw std::runtime_error("socketcand server: cannot listen on " + where + ": " +
-                             net::errno_text(errno));
   bound_.port = net::to_host_port(net::local_address(listen_fd_.get())).port;
 
   int pipe_fds[2];
@@ -148,8 +132,8 @@ SocketcandServer::SocketcandServer(const net::HostPort& listen_address,
     throw std::runtime_error("socketcand server: pipe() failed: " + net::errno_text(errno));
   wake_read_.reset(pipe_fds[0]);
   wake_write_.reset(pipe_fds[1]);
-  set_nonblocking(wake_read_.get());
-  set_nonblocking(wake_write_.get());
+  net::set_nonblocking(wake_read_.get());
+  net::set_nonblocking(wake_write_.get());
   ::fcntl(wake_read_.get(), F_SETFD, FD_CLOEXEC);
   ::fcntl(wake_write_.get(), F_SETFD, FD_CLOEXEC);
 
@@ -345,7 +329,7 @@ void SocketcandServer::accept_clients(std::vector<std::string>& warnings) {
     }
     net::UniqueFd owned(fd);
     ::fcntl(fd, F_SETFD, FD_CLOEXEC);
-    set_nonblocking(fd);
+    net::set_nonblocking(fd);
     const int one = 1;
     ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);  // one frame, one segment
     net::SocketAddress pa;

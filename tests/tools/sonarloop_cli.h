@@ -1,9 +1,16 @@
 #pragma once
 // Shared by the command-line tests: the sonarloop binary of this build tree, the inputs several
 // of them use, and the ways they run the binary.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
+#include <thread>
 
 #include "tests/support/temp_dir.h"
 
@@ -23,6 +30,19 @@ inline int run_quiet(const std::string& args) {
 inline int run_logged(const TempDir& dir, const std::string& args, const std::string& log) {
   return run_command(kBinary + " " + args + " > " + dir.file(log + ".out") + " 2> " +
                      dir.file(log + ".err"));
+}
+
+// Waits for a child that should end on its own (a hang detector, not a timing check): its wait
+// status, or nullopt after `seconds`, when it has been killed (SIGKILL) and reaped.
+inline std::optional<int> wait_exit_within(pid_t pid, int seconds) {
+  int status = 0;
+  for (int k = 0; k < seconds * 20; ++k) {
+    if (waitpid(pid, &status, WNOHANG) == pid) return status;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, &status, 0);
+  return std::nullopt;
 }
 
 // Every regular file below `root`, relative to it, with its bytes.

@@ -1,5 +1,5 @@
 // The live view as the commands open it (web/web_view.h): no address, no view; on 127.0.0.1 port
-// 0 a server on a free port of the loopback (built with cpp-httplib); the onboard consumer's
+// 0 a server on a free port of the loopback; the onboard consumer's
 // statistics as the page shows them; the process's CPU use.
 #include "web/web_view.h"
 
@@ -12,10 +12,6 @@ using namespace sonarloop;
 
 TEST_CASE("web view: opened only when asked for, on the loopback address given") {
   CHECK(web::open_web_view(std::nullopt, std::nullopt, "test") == nullptr);
-  if (!web::web_available()) {
-    WARN("built without cpp-httplib: the server is not tested here");
-    return;
-  }
   const auto view =
       web::open_web_view(net::parse_host_port("127.0.0.1:0"), GeoPoint{59.9, 10.75}, "test");
   REQUIRE(view);

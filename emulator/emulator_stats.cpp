@@ -25,6 +25,7 @@ void Emulator::Impl::update_stats(std::int64_t now) {
   stats.cpu_time_s = seconds(clock.process_cpu_ns() - cpu_start_ns);
   stats.pings_due = stats.pings_sent + stats.pings_dropped + stats.pings_stale;
   stats.pings_rendered = queue->produced();
+  stats.pings_abandoned = queue->abandoned();
   stats.render_mean_ms = stats.pings_rendered ? static_cast<double>(queue->produce_total_ns()) *
                                                     1e-6 / static_cast<double>(stats.pings_rendered)
                                               : 0.0;

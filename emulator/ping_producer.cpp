@@ -87,6 +87,7 @@ void ScenePingProducer::produce(std::int64_t k, int worker, PingSlot& slot) {
   const SimTime t = k * setup_.ping_period_ns;
   slot.index = k;
   slot.emitted = true;
+  slot.abandoned = false;
   slot.produce_ns = 0;
   slot.packet_size = 0;
   PingTruth& truth = slot.truth;
@@ -119,9 +120,17 @@ void ScenePingProducer::produce(std::int64_t k, int worker, PingSlot& slot) {
 
   // render and encode time
   const std::int64_t t0 = setup_.clock->now_ns();
-  // the ping, from the true pose
-  setup_.renderer->render(*setup_.scene, state.pose, setup_.seed, static_cast<std::uint64_t>(k), {},
-                          scratch, slot.lines);
+  // the ping, from the true pose; given up (its window closed, or the run stops) it is cut
+  // short and never sent
+  render::RenderOptions options;
+  options.abandon = slot.abandon;
+  setup_.renderer->render(*setup_.scene, state.pose, setup_.seed, static_cast<std::uint64_t>(k),
+                          options, scratch, slot.lines);
+  if (render::abandoned(options)) {
+    slot.abandoned = true;
+    slot.produce_ns = setup_.clock->now_ns() - t0;
+    return;
+  }
 
   // the navigation the sonar records with it
   const vehicle::NavSolution nav = nav_model->measure(state);

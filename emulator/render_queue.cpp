@@ -15,6 +15,11 @@ RenderQueue::RenderQueue(PingProducer& producer, int slots, int threads, std::si
   state_.assign(slots_.size(), State::kFree);
   released_.assign(slots_.size(), false);
   claimed_.assign(slots_.size(), -1);
+  abandon_ = std::make_unique<std::atomic<bool>[]>(slots_.size());
+  for (std::size_t s = 0; s < slots_.size(); ++s) {
+    abandon_[s].store(false);
+    slots_[s].abandon = &abandon_[s];
+  }
 }
 
 RenderQueue::~RenderQueue() {
@@ -54,6 +59,8 @@ void RenderQueue::stop() {
   {
     std::lock_guard<std::mutex> lock(mu_);
     stopping_ = true;
+    for (std::size_t s = 0; s < slots_.size(); ++s)
+      if (state_[s] == State::kProducing) abandon_[s].store(true);
   }
   producer_.cancel();
   cv_.notify_all();
@@ -84,6 +91,7 @@ void RenderQueue::release(std::int64_t k) {
         state_[s] = State::kFree;
       } else if (state_[s] == State::kProducing) {
         released_[s] = true;  // the worker frees it when done
+        abandon_[s].store(true);
       }
     }
   }
@@ -119,6 +127,7 @@ void RenderQueue::work(int worker) {
     k = next_claim_++;
     state_[s] = State::kProducing;
     released_[s] = false;
+    abandon_[s].store(false);
     claimed_[s] = k;
     PingSlot& slot = slots_[s];
     lock.unlock();
@@ -136,7 +145,10 @@ void RenderQueue::work(int worker) {
       return fail(lock, what);
     }
     // Only a ping that was rendered counts: a period without one (a stale external pose) takes
-    // no render time and must not pull the mean down or show in the render statistics.
+    // no render time and must not pull the mean down or show in the render statistics. A render
+    // cut short counts in the mean (the time is a lower bound of what it needed) and is counted
+    // apart.
+    if (slot.abandoned) abandoned_.fetch_add(1);
     if (slot.emitted) {
       // running mean over about the last 8 pings (the first ping sets it); one slow ping (a
       // tile made on the spot) counts at most 4 times the mean, so it does not make the
@@ -148,6 +160,8 @@ void RenderQueue::work(int worker) {
         render_mean_ns_ =
             std::max<std::int64_t>(1, render_mean_ns_ + (sample - render_mean_ns_) / 8);
       }
+    }
+    if (slot.emitted && !slot.abandoned) {
       produced_.fetch_add(1);
       produce_total_ns_.fetch_add(slot.produce_ns);
       std::int64_t prev = produce_max_ns_.load();

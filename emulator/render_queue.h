@@ -19,9 +19,12 @@
 // every n-th ping instead of rendering each one just too late and sending none.
 //
 // Dropped pings. The publisher may give up on ping k (its send window passed, pacer.h
-// ping_window) while a worker is still producing it: release(k) then marks the slot, and the
-// worker frees it when it finishes. A ping the publisher gave up on before any worker claimed it
-// is skipped by the workers (never produced).
+// ping_window) while a worker is still producing it: release(k) then marks the slot and raises
+// its abandon flag (PingSlot::abandon), the renderer stops at its next look at the flag, and the
+// worker frees the slot: a ping that cannot make its window costs at most the window plus one
+// beam plane's (or ray batch's) work, never a worker for as long as it would take, and stop()
+// raises every flag. A ping the publisher gave up on before any worker claimed it is skipped by
+// the workers (never produced).
 //
 // Errors: an exception thrown by the producer stops the queue; the publisher sees it through
 // failed() / error() and stops the run.
@@ -30,6 +33,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -67,6 +71,11 @@ struct PingSlot {
   std::size_t packet_size = 0;       // bytes of `packet` holding this ping
   PingTruth truth;
   std::int64_t produce_ns = 0;  // worker time spent on this ping (render + encode)
+  // Set by the queue while the ping is produced, when the publisher gives it up or the queue
+  // stops: the producer passes it to the renderer (RenderOptions::abandon), which then returns
+  // early. `abandoned`: the producer's report that the render was cut short.
+  const std::atomic<bool>* abandon = nullptr;
+  bool abandoned = false;
 };
 
 // Fills a slot for ping k. Called concurrently from the worker threads (worker = 0..threads-1,
@@ -113,6 +122,8 @@ class RenderQueue {
   // Pings rendered (slots produced with emitted set; a period without a ping is not counted) and
   // their total and largest production times.
   std::uint64_t produced() const { return produced_.load(); }
+  // Pings whose render was cut short (given up, or the queue stopped while it rendered).
+  std::uint64_t abandoned() const { return abandoned_.load(); }
   std::int64_t produce_total_ns() const { return produce_total_ns_.load(); }
   std::int64_t produce_max_ns() const { return produce_max_ns_.load(); }
 
@@ -132,6 +143,7 @@ class RenderQueue {
   // the ping each slot was last claimed for (mu_): the slot's own index is the producer's to
   // write while it produces, so the publisher side never reads it then
   std::vector<std::int64_t> claimed_;
+  std::unique_ptr<std::atomic<bool>[]> abandon_;  // per slot (PingSlot::abandon)
 
   mutable std::mutex mu_;
   std::condition_variable cv_;  // workers: a slot was freed, the publisher moved, stop
@@ -147,6 +159,7 @@ class RenderQueue {
   Wakeup wakeup_;
 
   std::atomic<std::uint64_t> produced_{0};
+  std::atomic<std::uint64_t> abandoned_{0};
   std::atomic<std::int64_t> produce_total_ns_{0};
   std::atomic<std::int64_t> produce_max_ns_{0};
   std::vector<std::thread> workers_;

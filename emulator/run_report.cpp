@@ -87,11 +87,15 @@ void print_run_summary(const emulator::RunStats& s, const char* how) {
                  static_cast<unsigned long long>(s.imc_datagrams),
                  static_cast<unsigned long long>(s.imc_dropped));
   }
+  std::string abandoned;
+  if (s.pings_abandoned) {
+    abandoned = ", " + std::to_string(s.pings_abandoned) + " more cut short when given up";
+  }
   std::fprintf(stderr,
-               "  render: %llu pings, %.2f ms mean, %.2f ms max on %d threads; %llu heightmap "
+               "  render: %llu pings, %.2f ms mean, %.2f ms max on %d threads%s; %llu heightmap "
                "tiles made\n",
                static_cast<unsigned long long>(s.pings_rendered), s.render_mean_ms, s.render_max_ms,
-               s.threads, static_cast<unsigned long long>(s.tiles_made));
+               s.threads, abandoned.c_str(), static_cast<unsigned long long>(s.tiles_made));
   const seabed::SeabedCacheStats& c = s.seabed_cache;
   const auto percent = [](const seabed::TileCacheCounters& k) {
     const std::uint64_t asked = k.hits + k.misses;

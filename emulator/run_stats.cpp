@@ -152,7 +152,7 @@ std::string stats_json(const RunStats& s) {
   w.field("extrapolated", s.pings_extrapolated);
   w.field("deadline_misses", s.deadline_misses());
   w.field("deadline_tolerance_ms", ms(static_cast<double>(s.deadline_tolerance_ns)), 6);
-  w.field("rendered", s.pings_rendered);
+  w.field("rendered", s.pings_rendered).field("abandoned", s.pings_abandoned);
   w.field("pings_per_wall_s",
           s.wall_time_s > 0 ? static_cast<double>(s.pings_sent) / s.wall_time_s : 0.0, 6);
   w.field("render_mean_ms", s.render_mean_ms, 6).field("render_max_ms", s.render_max_ms, 6);

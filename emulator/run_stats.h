@@ -117,6 +117,7 @@ struct RunStats {
 
   // rendering (from the render queue and the view cache)
   std::uint64_t pings_rendered = 0;
+  std::uint64_t pings_abandoned = 0;  // renders cut short: given up, or the run stopped
   double render_mean_ms = 0.0;
   double render_max_ms = 0.0;
   std::uint64_t tiles_made = 0;           // heightmap tiles the seabed made (all detail levels)

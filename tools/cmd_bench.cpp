@@ -205,7 +205,7 @@ void bench_split(const config::Scenario& s) {
       t_gen += seconds_since(t0);
       render::RaytraceRenderer::copy_rays(scratch, saved);
       t0 = Clock::now();
-      render::RaytraceRenderer::intersect(*view, scratch);
+      render::RaytraceRenderer::intersect(*view, {}, scratch);
       t_isect += seconds_since(t0);
       t0 = Clock::now();
       r.shade(sc, *view, 1, k, {}, alt, scratch, lines);

@@ -22,6 +22,7 @@
 // Usage: make one renderer per sonar (make_ping_renderer), share it between threads (render() is
 // const and thread-safe) and give each thread its own PingScratch. The same scene, sonar, pose,
 // seed, ping index and options give byte-identical lines on any thread, in any order.
+#include <atomic>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -88,7 +89,16 @@ struct RenderOptions {
   // output must depend only on the ping (not on what else was rendered). Default: the ground
   // the ping reaches, snapped outwards to a fixed grid (raytrace_renderer.h).
   std::optional<scene::Box2> view_region;
+  // Set by another thread when the ping is no longer wanted (its send window has closed, or the
+  // run stops): the renderer looks at it between beam planes (profile) or ray batches (ray
+  // tracer) and returns at once, the lines unfinished; the caller discards them. Null: never.
+  const std::atomic<bool>* abandon = nullptr;
 };
+
+// Whether the ping being rendered with `options` has been given up (RenderOptions::abandon).
+inline bool abandoned(const RenderOptions& options) {
+  return options.abandon && options.abandon->load(std::memory_order_relaxed);
+}
 
 // Per ray of a ping, what shading needs besides the Embree hit.
 struct RayMeta {

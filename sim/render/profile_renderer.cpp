@@ -143,6 +143,7 @@ void ProfileRenderer::render(const scene::Scene& scene, const Pose& pose, std::u
     line.pat_a = uz * cos_dep - line.sign * uy * sin_dep;
     line.pat_b = wz * cos_dep - line.sign * wy * sin_dep;
     for (int j = 0; j < static_cast<int>(echo().along().size()); ++j) {
+      if (abandoned(options)) return;  // the caller discards the ping
       line.j = j;
       const double a = echo().along()[static_cast<std::size_t>(j)];
       line.alpha = line.strip ? a : 0.0;
@@ -232,7 +233,8 @@ class ProfileRenderer::LineMarch {
         // seabed slope times sin(pitch): well below a millimetre).
         dz_last_(line.altitude),
         alpha_last_(strip_ ? line.alpha : std::hypot(line.s_start, line.altitude) * sin_psi_),
-        needs_correction_(!strip_ || std::abs(wx_) + std::abs(wy_) > 1e-9) {
+        needs_correction_(!strip_ || std::abs(wx_) + std::abs(wy_) > 1e-9),
+        beta_cap_(line.r_max + bin_m_) {
     if (targets_) ls_.horizon.resize(static_cast<std::size_t>(line.samples));
   }
 
@@ -245,7 +247,8 @@ class ProfileRenderer::LineMarch {
       q.s = line_.s_start + (k0 + i) * line_.step;
       const double alpha = strip_ ? alpha_last_ : alpha_last_ + (i + 1) * alpha_slope_;
       q.alpha = strip_ ? 0.0 : alpha;  // the offset along n from the transducer (beam cone)
-      const double b_guess = (dz_last_ + (i + 1) * dz_slope_ - alpha * nz_) * inv_wz_;
+      const double b_guess =
+          std::min(beta_cap_, (dz_last_ + (i + 1) * dz_slope_ - alpha * nz_) * inv_wz_);
       px_[i] = ox_ + alpha * nx_ + q.s * ux_ + b_guess * wx_;
       py_[i] = oy_ + alpha * ny_ + q.s * uy_ + b_guess * wy_;
     }
@@ -261,8 +264,9 @@ class ProfileRenderer::LineMarch {
         Sample& q = block_[i];
         const double alpha = strip_ ? line_.alpha : q.rho * inv_cos_psi_ * sin_psi_;
         q.alpha = strip_ ? 0.0 : alpha;
-        px_[i] = ox_ + alpha * nx_ + q.s * ux_ + q.b * wx_;
-        py_[i] = oy_ + alpha * ny_ + q.s * uy_ + q.b * wy_;
+        const double b = std::min(beta_cap_, q.b);
+        px_[i] = ox_ + alpha * nx_ + q.s * ux_ + b * wx_;
+        py_[i] = oy_ + alpha * ny_ + q.s * uy_ + b * wy_;
       }
       read_heights(n);
       set_geometry(n);
@@ -568,6 +572,11 @@ class ProfileRenderer::LineMarch {
   double dz_last_, dz_slope_ = 0.0;
   double alpha_last_, alpha_slope_ = 0.0;
   const bool needs_correction_;
+  // No sample deeper along w than this is in range (β ≤ ρ ≤ r): the heights are read no
+  // farther out. Below a steep pitch the plane runs nearly level, and β = dz / w_z of a guessed
+  // or first-read depth would land hundreds of metres away (dz tan(pitch) along track, 860 m
+  // at 7.5 m altitude and 89.5°), making tiles there for samples that are out of range anyway.
+  const double beta_cap_;
   // the block
   Sample block_[kBlock];
   double px_[kBlock], py_[kBlock], elev_[kBlock], grad_x_[kBlock], grad_y_[kBlock];

@@ -165,9 +165,13 @@ void RaytraceRenderer::prepare(const scene::Scene& scene, const Pose& pose,
 void RaytraceRenderer::render(const scene::Scene& scene, const Pose& pose, std::uint64_t seed,
                               std::uint64_t ping_index, const RenderOptions& options,
                               PingScratch& scratch, PingLines& out) const {
+  // an abandoned ping returns between the phases and ray batches; the caller discards it
+  scratch.rays_cast = 0;
+  scratch.samples = 0;
   const auto view = view_for(scene, pose, options);
+  if (abandoned(options)) return;
   const double altitude = generate_rays(scene, *view, pose, options, scratch);
-  intersect(*view, scratch);
+  if (!intersect(*view, options, scratch)) return;
   shade(scene, *view, seed, ping_index, options, altitude, scratch, out);
 }
 
@@ -213,15 +217,22 @@ double RaytraceRenderer::generate_rays(const scene::Scene& scene, const scene::S
   return altitude;
 }
 
-void RaytraceRenderer::intersect(const scene::SceneView& view, PingScratch& scratch) {
-  if (scratch.rays.empty()) return;
+bool RaytraceRenderer::intersect(const scene::SceneView& view, const RenderOptions& options,
+                                 PingScratch& scratch) {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   // rays of a fan are coherent: neighbours leave the same origin in nearly the same direction
   ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  rtcIntersect1M(view.rtc_scene(), &ctx, scratch.rays.data(),
-                 static_cast<unsigned>(scratch.rays.size()), sizeof(RTCRayHit));
-  scratch.rays_cast += scratch.rays.size();
+  // in batches, so that an abandoned ping stops between them
+  constexpr std::size_t kBatch = 16384;
+  for (std::size_t first = 0; first < scratch.rays.size(); first += kBatch) {
+    if (abandoned(options)) return false;
+    const std::size_t n = std::min(kBatch, scratch.rays.size() - first);
+    rtcIntersect1M(view.rtc_scene(), &ctx, scratch.rays.data() + first, static_cast<unsigned>(n),
+                   sizeof(RTCRayHit));
+    scratch.rays_cast += n;
+  }
+  return !abandoned(options);
 }
 
 void RaytraceRenderer::copy_rays(const PingScratch& from, PingScratch& to) {

@@ -54,11 +54,13 @@ class RaytraceRenderer final : public PingRenderer {
 
   // The three phases of render(), public so that `sonarloop bench` can time Embree alone on
   // exactly the renderer's rays: generate_rays fills scratch.rays/meta (returns the nadir
-  // altitude, NaN if the sonar is out of the water), intersect traces them (Embree only), and
-  // shade turns hits into intensity per bin and finishes the lines.
+  // altitude, NaN if the sonar is out of the water), intersect traces them (Embree only, in
+  // batches; false when options.abandon stopped it), and shade turns hits into intensity per
+  // bin and finishes the lines.
   double generate_rays(const scene::Scene& scene, const scene::SceneView& view, const Pose& pose,
                        const RenderOptions& options, PingScratch& scratch) const;
-  static void intersect(const scene::SceneView& view, PingScratch& scratch);
+  static bool intersect(const scene::SceneView& view, const RenderOptions& options,
+                        PingScratch& scratch);
   // The bench's baseline on the same rays: copy_rays keeps a copy of the generated rays aside
   // (into `to`'s ray buffer), intersect_one_by_one traces a scratch's rays with one rtcIntersect1
   // each and nothing else (no packet, no context flags), ray_count says how many there are.

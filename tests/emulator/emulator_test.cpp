@@ -32,6 +32,7 @@
 #include "sim/vehicle/trajectory.h"
 #include "tests/emulator/test_scenario.h"
 #include "tests/support/temp_dir.h"
+#include "units/angles.h"
 
 using namespace sonarloop;
 using namespace sonarloop::emulator;
@@ -461,6 +462,29 @@ TEST_CASE("emulator --pose-from: a source of absurd poses stalls the pings; they
   REQUIRE(file.pings.size() == s.pings_sent);
   for (const auto& p : file.pings)
     CHECK(p.header.sensor_depth_m == Approx(12.0f));
+}
+
+TEST_CASE("emulator --pose-from: a vehicle pitched 89.5° still gets its pings, and the run ends") {
+  // issue 29: a pitch between about 80° and 90° passed the plausibility check, then each ping
+  // took 2-46 s to render, every ping was dropped and the run outlived its duration
+  testing::TempDir dir("emu-hil-steep");
+  const HilRun run = run_hil(dir, 0.5, [](net::UdpSender& tx, const GeoPoint& where) {
+    for (std::uint32_t i = 0; i < 120; ++i) {
+      PoseMessage m = level_pose(i, where, 12.0, 0.3);
+      m.pitch_rad = 89.5 * sonarloop::kRadPerDeg;
+      tx.send(encode_pose_message(m));
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  });
+  const RunStats& s = run.stats;
+  CHECK(s.pose_rejected == 0);  // a plausible attitude: accepted, and rendered
+  CHECK(s.pings_sent > 0);
+  CHECK(s.pings_rendered >= s.pings_sent);
+  // the beam planes run nearly level: nothing in range, the pings are dark
+  const auto file = xtf::read_all_pings(dir.file("hil/pings.xtf"));
+  REQUIRE(file.pings.size() == s.pings_sent);
+  for (const auto& p : file.pings)
+    CHECK(p.header.sensor_pitch_deg == Approx(89.5f));
 }
 
 namespace {

@@ -125,6 +125,26 @@ class SlowProducer final : public PingProducer {
   std::vector<std::pair<std::int64_t, std::int64_t>> finished_;
 };
 
+// Ping `endless` renders until its slot's abandon flag is raised (at most 20 s), as a renderer
+// does between beam planes; the others at once. Ignores cancel(): only the flag ends it.
+class EndlessProducer final : public PingProducer {
+ public:
+  explicit EndlessProducer(std::int64_t endless) : endless_(endless) {}
+  void produce(std::int64_t k, int, PingSlot& slot) override {
+    slot.abandoned = false;
+    slot.packet_size = 1;
+    if (k != endless_) return;
+    entered_ = true;
+    for (int i = 0; i < 20000 && !slot.abandon->load(); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    slot.abandoned = slot.abandon->load();
+  }
+  std::atomic<bool> entered_{false};
+
+ private:
+  std::int64_t endless_;
+};
+
 // Waits (on the queue's wake-up) until ping k is ready.
 const PingSlot* wait_ready(RenderQueue& q, std::int64_t k) {
   for (int i = 0; i < 2000; ++i) {
@@ -200,6 +220,40 @@ TEST_CASE("RenderQueue: pings the publisher gave up on before a worker took them
   q.stop();
   // ping 0 was rendered (it was under way), 1..5 never were
   CHECK(p.produced_.load() == 1 + 14);
+}
+
+TEST_CASE("RenderQueue: a ping given up while it renders is abandoned, not waited for") {
+  // issue 29: a pose the renderer could not render in time held a worker for 2-46 s a ping
+  EndlessProducer p(/*endless=*/2);
+  RenderQueue q(p, 4, 1, 16);  // one worker: everything after ping 2 waits for it
+  q.start(0, 10);
+  for (std::int64_t k = 0; k < 2; ++k) {
+    REQUIRE(wait_ready(q, k));
+    q.release(k);
+  }
+  for (int i = 0; i < 2000 && !p.entered_.load(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  REQUIRE(p.entered_.load());
+  q.release(2);  // its window closed: the flag is raised, the render stops, the worker goes on
+  for (std::int64_t k = 3; k < 10; ++k) {
+    REQUIRE(wait_ready(q, k));
+    q.release(k);
+  }
+  q.stop();
+  CHECK(q.abandoned() == 1);
+  CHECK(q.produced() == 9);  // the abandoned ping is not counted as rendered
+}
+
+TEST_CASE("RenderQueue: stop() abandons the ping being rendered") {
+  EndlessProducer p(/*endless=*/0);
+  RenderQueue q(p, 2, 1, 16);
+  q.start(0);
+  for (int i = 0; i < 2000 && !p.entered_.load(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  REQUIRE(p.entered_.load());
+  q.stop();  // returns only once the worker has: the flag ended the render
+  CHECK(q.abandoned() == 1);
+  CHECK_FALSE(q.failed());
 }
 
 TEST_CASE("RenderQueue: a producer error stops the queue and is reported") {

@@ -3,6 +3,7 @@
 // detail levels for coarse pixels.
 #include "sim/render/profile_renderer.h"
 
+#include <atomic>
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -232,5 +233,59 @@ TEST_CASE("profile renderer: coarse pixels read a coarser level of the same surf
     CHECK(rms < 2.0);
     WARN("level 2 against level 0 at 30 cm, " << kind << ": " << rms << " dB RMS per bin, "
                                               << bias_db << " dB mean");
+  }
+}
+
+TEST_CASE("profile renderer: a steep pitch reads no heights out of range, and sees nothing") {
+  // issue 29: a pose pitched 80-90° (its beam planes nearly level) had each sample's depth
+  // below the plane land dz·tan(pitch) along track, hundreds of metres away: each ping made
+  // tiles there for 2-46 s, for samples out of range anyway
+  const scene::SceneDesc desc = seabed_scene("rocky");
+  const SonarSetup setup = make_sonar_setup(noiseless_strip_sonar(), desc.water);
+  const ProfileRenderer prof(setup, default_fidelity(setup));
+  const auto tiles_for = [&](double pitch_deg, PingLines& lines) {
+    const scene::Scene sc(desc);  // a fresh scene: no tiles yet
+    Pose pose;
+    pose.position_W = Vec3(0.0, 0.0, sc.desc().water.depth_m - 6.0);
+    pose.pitch = pitch_deg * kRadPerDeg;
+    PingScratch s;
+    prof.render(sc, pose, 1, 0, {}, s, lines);
+    return sc.seabed().tiles_made();
+  };
+  PingLines level, steep;
+  const auto level_tiles = tiles_for(0.0, level);
+  const auto steep_tiles = tiles_for(89.5, steep);
+  INFO("tiles made: level " << level_tiles << ", pitched 89.5° " << steep_tiles);
+  CHECK(steep_tiles <= 4 * level_tiles);
+  // the planes meet the seabed 690 m away, far beyond the 30 m range: every bin is dark
+  for (const auto* line : {&steep.port, &steep.stbd})
+    for (float v : *line)
+      CHECK(v == 0.0f);
+}
+
+TEST_CASE("renderers: an abandoned ping returns early; an unset flag changes nothing") {
+  const scene::Scene sc(seabed_scene("clutter"));
+  const SonarSetup setup = make_sonar_setup(noiseless_strip_sonar(), sc.desc().water);
+  const ProfileRenderer prof(setup, default_fidelity(setup));
+  const RaytraceRenderer ray(setup, default_fidelity(setup));
+  Pose pose;
+  pose.position_W = Vec3(0.2, 0.0, sc.desc().water.depth_m - 5.0);
+  for (const PingRenderer* r :
+       {static_cast<const PingRenderer*>(&prof), static_cast<const PingRenderer*>(&ray)}) {
+    const bool profile = r->kind() == RendererKind::kProfile;
+    INFO((profile ? "profile" : "raytrace"));
+    PingScratch s;
+    PingLines plain, flagged, cut;
+    r->render(sc, pose, 1, 0, {}, s, plain);
+    std::atomic<bool> abandon{false};
+    RenderOptions o;
+    o.abandon = &abandon;
+    r->render(sc, pose, 1, 0, o, s, flagged);
+    CHECK(flagged.port == plain.port);
+    CHECK(flagged.stbd == plain.stbd);
+    abandon = true;
+    r->render(sc, pose, 1, 0, o, s, cut);
+    CHECK(s.samples == 0);  // no beam plane marched
+    if (!profile) CHECK(s.rays_cast == 0);
   }
 }

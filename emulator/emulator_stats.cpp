@@ -42,6 +42,7 @@ void Emulator::Impl::update_stats(std::int64_t now) {
     stats.pose_reanchors = p.reanchors;
     stats.pose_malformed = p.malformed;
     stats.pose_lost = p.lost;
+    stats.pose_restarts = p.sequence_restarts;
   }
 }
 

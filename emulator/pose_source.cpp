@@ -25,6 +25,7 @@ std::string counters(const PoseSourceStats& s) {
   if (s.rejected) text += ", " + std::to_string(s.rejected) + " rejected as implausible";
   if (s.reanchors) text += ", " + std::to_string(s.reanchors) + " re-anchored";
   if (s.lost) text += ", " + std::to_string(s.lost) + " lost";
+  if (s.sequence_restarts) text += ", " + std::to_string(s.sequence_restarts) + " sender restarts";
   if (s.out_of_order) text += ", " + std::to_string(s.out_of_order) + " out of order";
   if (s.receive_errors) text += ", " + std::to_string(s.receive_errors) + " receive errors";
   return text;

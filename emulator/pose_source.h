@@ -147,12 +147,15 @@ struct PoseSourceOptions {
 
 // What a pose source counted (PoseSource::stats()).
 struct PoseSourceStats {
-  std::uint64_t updates = 0;         // frames/messages that updated the pose
-  std::uint64_t rejected = 0;        // decoded but implausible poses (PoseLimits), dropped
-  std::uint64_t reanchors = 0;       // new reference accepted after reanchor_after rejections
-  std::uint64_t ignored = 0;         // valid frames of PGNs that carry no pose (e.g. 129026)
-  std::uint64_t malformed = 0;       // undecodable messages/frames, unavailable or invalid fields
-  std::uint64_t lost = 0;            // UDP: messages missing according to the sequence numbers
+  std::uint64_t updates = 0;    // frames/messages that updated the pose
+  std::uint64_t rejected = 0;   // decoded but implausible poses (PoseLimits), dropped
+  std::uint64_t reanchors = 0;  // new reference accepted after reanchor_after rejections
+  std::uint64_t ignored = 0;    // valid frames of PGNs that carry no pose (e.g. 129026)
+  std::uint64_t malformed = 0;  // undecodable messages/frames, unavailable or invalid fields
+  std::uint64_t lost = 0;       // UDP: messages missing according to the sequence numbers
+  // UDP: sequence jumps taken as a sender restart (back by more than 64, ahead by more than
+  // 65536), not counted as lost
+  std::uint64_t sequence_restarts = 0;
   std::uint64_t out_of_order = 0;    // UDP: late messages (older sequence), dropped
   std::uint64_t receive_errors = 0;  // transport failures (connection lost, socket errors)
   std::uint64_t reconnects = 0;      // successful reconnections after a failure

@@ -48,12 +48,13 @@ void print_run_summary(const emulator::RunStats& s, const char* how) {
   if (s.has_pose_source) {
     std::fprintf(stderr,
                  "  pose: %llu updates, %llu rejected as implausible (%llu re-anchored), %llu "
-                 "malformed, %llu lost\n",
+                 "malformed, %llu lost, %llu sender restarts\n",
                  static_cast<unsigned long long>(s.pose_updates),
                  static_cast<unsigned long long>(s.pose_rejected),
                  static_cast<unsigned long long>(s.pose_reanchors),
                  static_cast<unsigned long long>(s.pose_malformed),
-                 static_cast<unsigned long long>(s.pose_lost));
+                 static_cast<unsigned long long>(s.pose_lost),
+                 static_cast<unsigned long long>(s.pose_restarts));
   }
   if (s.wall_time_s > 0) {
     std::fprintf(stderr, "  throughput: %.1f pings/s (%.2fx real time)\n",

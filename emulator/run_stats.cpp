@@ -163,7 +163,7 @@ std::string stats_json(const RunStats& s) {
     w.key("pose_source").begin_object();
     w.field("updates", s.pose_updates).field("rejected", s.pose_rejected);
     w.field("reanchors", s.pose_reanchors).field("malformed", s.pose_malformed);
-    w.field("lost", s.pose_lost);
+    w.field("lost", s.pose_lost).field("sender_restarts", s.pose_restarts);
     w.end_object();
   }
   w.key("nav").begin_object();

@@ -92,6 +92,7 @@ struct RunStats {
   std::uint64_t pose_reanchors = 0;  // new reference accepted after consecutive jump rejections
   std::uint64_t pose_malformed = 0;  // undecodable
   std::uint64_t pose_lost = 0;       // UDP: missing by sequence number
+  std::uint64_t pose_restarts = 0;   // UDP: sequence jumps taken as a sender restart
   LatencyHistogram ping_lateness;    // send - send deadline (paced runs)
   LatencyHistogram ping_latency;     // send - ping time (paced runs): send delay + lateness
 

@@ -90,6 +90,25 @@ TEST_CASE("pose source udp: messages update latest(); received_ns is the injecte
   REQUIRE(wait_until([&] { return udp->stats().updates == 3; }));
   CHECK(udp->stats().lost == 4);
   CHECK(source->latest()->received_ns == 6000);
+  // a jump back by more than the window, or far ahead, is a sender that started again: the
+  // message is taken, and nothing is counted as lost (a jump ahead by 2^31 - 1 counted 2.1
+  // billion lost before)
+  // (the contents of messages 8, 9, 10: plausible in time and place)
+  const auto numbered = [](std::uint32_t content, std::uint32_t sequence) {
+    PoseMessage m = message(content);
+    m.sequence = sequence;
+    return m;
+  };
+  constexpr std::uint32_t kBack = 7u - 80u;  // wraps: 80 behind
+  send(tx, numbered(8, kBack));
+  REQUIRE(wait_until([&] { return udp->stats().updates == 4; }));
+  send(tx, numbered(9, kBack + 0x7fffffffu));
+  REQUIRE(wait_until([&] { return udp->stats().updates == 5; }));
+  CHECK(udp->stats().sequence_restarts == 2);
+  CHECK(udp->stats().lost == 4);
+  send(tx, numbered(10, kBack + 0x7fffffffu + 3u));  // then the counting goes on from there
+  REQUIRE(wait_until([&] { return udp->stats().updates == 6; }));
+  CHECK(udp->stats().lost == 6);
 
   // malformed datagrams are counted and change nothing
   clock.value = 7000;
@@ -100,7 +119,8 @@ TEST_CASE("pose source udp: messages update latest(); received_ns is the injecte
   REQUIRE(wait_until([&] { return udp->stats().malformed == 2; }));
   CHECK_THAT(udp->stats().last_error, Contains("3000 bytes"));
   CHECK(source->latest()->received_ns == 6000);
-  CHECK_THAT(source->describe(), Contains("3 updates, 2 malformed"));
+  CHECK_THAT(source->describe(),
+             Contains("6 updates, 2 malformed") && Contains("6 lost, 2 sender restarts"));
 }
 
 TEST_CASE("pose source udp: a port in use is a clear error") {

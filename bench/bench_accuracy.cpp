@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <thread>
 
 #include "config/loader/sonar_loader.h"
 #include "drivers/json/json_writer.h"
@@ -108,8 +109,13 @@ render::SonarDesc isotropic_strip_sonar(const render::SonarDesc& base, double ra
   return sd;
 }
 
-LineSet render_set(const scene::Scene& scene, const render::PingRenderer& renderer,
-                   const std::vector<Pose>& poses) {
+namespace {
+
+// render_set on `threads` threads: ping k on thread k mod threads (this one among them), after
+// one untimed pass that makes the tiles and views in order. Each ping is a function of (scene,
+// pose, seed, k): the thread that renders it changes nothing.
+LineSet render_lines(const scene::Scene& scene, const render::PingRenderer& renderer,
+                     const std::vector<Pose>& poses, int threads) {
   LineSet out;
   out.lines.resize(poses.size());
   out.traces.resize(poses.size());
@@ -120,13 +126,38 @@ LineSet render_set(const scene::Scene& scene, const render::PingRenderer& render
   render::PingScratch scratch;
   for (std::size_t k = 0; k < poses.size(); ++k)  // tiles and views, untimed
     renderer.prepare(scene, poses[k], opt, scratch);
+  const auto n = static_cast<std::size_t>(std::max(1, threads));
+  const auto render_from = [&](std::size_t first, render::PingScratch& own) {
+    for (std::size_t k = first; k < poses.size(); k += n) {
+      renderer.render(scene, poses[k], 1, k, opt, own, out.lines[k]);
+      out.traces[k] = own.traces;
+    }
+  };
   const auto t0 = Clock::now();
-  for (std::size_t k = 0; k < poses.size(); ++k) {
-    renderer.render(scene, poses[k], 1, k, opt, scratch, out.lines[k]);
-    out.traces[k] = scratch.traces;
+  std::vector<std::thread> others;
+  for (std::size_t t = 1; t < n; ++t) {
+    others.emplace_back([&, t] {
+      render::PingScratch own;
+      render_from(t, own);
+    });
   }
+  render_from(0, scratch);
+  for (auto& th : others)
+    th.join();
   out.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return out;
+}
+
+}  // namespace
+
+LineSet render_set(const scene::Scene& scene, const render::PingRenderer& renderer,
+                   const std::vector<Pose>& poses) {
+  return render_lines(scene, renderer, poses, 1);
+}
+
+LineSet render_reference(const scene::Scene& scene, const render::PingRenderer& renderer,
+                         const std::vector<Pose>& poses, int threads) {
+  return render_lines(scene, renderer, poses, threads);
 }
 
 LineErrors compare_lines(const LineSet& got, const LineSet& ref) {
@@ -168,7 +199,7 @@ LineErrors compare_lines(const LineSet& got, const LineSet& ref) {
   return e;
 }
 
-void bench_fidelity(const config::Scenario& s, bool full, const SectionOutput& out) {
+void bench_fidelity(const config::Scenario& s, bool full, int threads, const SectionOutput& out) {
   // pings across each target of the scenario (5 cm pixels, 30 m range)
   const render::SonarDesc base = isotropic_strip_sonar(s.sonar, 30.0, 0.05);
   std::vector<Pose> poses;
@@ -186,7 +217,7 @@ void bench_fidelity(const config::Scenario& s, bool full, const SectionOutput& o
   const render::Fidelity ref_fid = reference_fidelity(base_setup, full);
   const auto ref_renderer =
       render::make_ping_renderer(render::RendererKind::kRaytrace, base_setup, ref_fid);
-  const LineSet ref = render_set(ref_scene, *ref_renderer, poses);
+  const LineSet ref = render_reference(ref_scene, *ref_renderer, poses, threads);
   const std::string ref_name = "raytrace " + std::to_string(ref_fid.rays_per_bin) + "x" +
                                std::to_string(ref_fid.along_track_rays) + ", grid 0.0125 m";
 
@@ -251,7 +282,7 @@ void bench_fidelity(const config::Scenario& s, bool full, const SectionOutput& o
   }
 }
 
-void bench_accuracy(const config::Scenario& s, bool full, const SectionOutput& out) {
+void bench_accuracy(const config::Scenario& s, bool full, int threads, const SectionOutput& out) {
   const int per_target = full ? 11 : 5;
   std::vector<Case> cases;
   std::vector<std::pair<std::string, scene::SceneDesc>> scenes = {{s.scene.name, s.scene}};
@@ -301,7 +332,7 @@ void bench_accuracy(const config::Scenario& s, bool full, const SectionOutput& o
     const render::SonarSetup setup = render::make_sonar_setup(c.sonar, c.scene.water);
     const render::Fidelity ref_fid = reference_fidelity(setup, full);
     const auto ref_r = render::make_ping_renderer(render::RendererKind::kRaytrace, setup, ref_fid);
-    const LineSet ref = render_set(sc, *ref_r, c.poses);
+    const LineSet ref = render_reference(sc, *ref_r, c.poses, threads);
     for (const render::RendererKind kind :
          {render::RendererKind::kProfile, render::RendererKind::kRaytrace}) {
       const auto r = render::make_ping_renderer(kind, setup);

@@ -52,6 +52,10 @@ struct LineSet {
 // pass that makes the tiles or views).
 LineSet render_set(const scene::Scene& scene, const render::PingRenderer& renderer,
                    const std::vector<Pose>& poses);
+// The same lines on `threads` threads, each ping on one (the reference's renders, whose time
+// is not reported: the lines are those of render_set, ping for ping).
+LineSet render_reference(const scene::Scene& scene, const render::PingRenderer& renderer,
+                         const std::vector<Pose>& poses, int threads);
 
 struct LineErrors {
   double rms_db = 0.0;
@@ -64,8 +68,9 @@ struct LineErrors {
 LineErrors compare_lines(const LineSet& got, const LineSet& ref);
 
 // The sections; each prints JSON lines. full: the exhaustive grid and an 8x8-ray reference
-// (else 4x4 and a compact grid).
-void bench_fidelity(const config::Scenario& s, bool full, const SectionOutput& out);
-void bench_accuracy(const config::Scenario& s, bool full, const SectionOutput& out);
+// (else 4x4 and a compact grid). The reference renders on `threads` threads; the timed renders
+// on one.
+void bench_fidelity(const config::Scenario& s, bool full, int threads, const SectionOutput& out);
+void bench_accuracy(const config::Scenario& s, bool full, int threads, const SectionOutput& out);
 
 }  // namespace sonarloop::bench

@@ -400,8 +400,8 @@ int run_bench(const std::vector<std::string>& argv) {
   if (want("chips")) bench_chips(s, full ? 200 : 40);
   if (want("run")) bench_run(s, threads, 1000.0, full ? 300.0 : 100.0);
   SectionPrinter printer;
-  if (want("fidelity")) bench::bench_fidelity(s, full, printer.output());
-  if (want("accuracy")) bench::bench_accuracy(s, full, printer.output());
+  if (want("fidelity")) bench::bench_fidelity(s, full, threads, printer.output());
+  if (want("accuracy")) bench::bench_accuracy(s, full, threads, printer.output());
   return 0;
 }
 

@@ -1,11 +1,14 @@
 // The line comparison of the bench's accuracy sections (bench/bench_accuracy.h) on lines with a
 // known answer: identical lines have no error; a line 10 times brighter is 10 dB off in every
 // bin lit in both; a shadow edge or a lit/dark transition moved by k bins is k bins off; the
-// isotropic strip sonar has the pixel as its bin and along-track resolution.
+// isotropic strip sonar has the pixel as its bin and along-track resolution; the reference
+// rendered on two threads is the one-thread render, ping for ping.
 #include "bench/bench_accuracy.h"
 
 #include <catch2/catch.hpp>
 #include <vector>
+
+#include "sim/render/chip_renderer.h"
 
 using namespace sonarloop;
 
@@ -70,4 +73,35 @@ TEST_CASE("bench accuracy: the isotropic strip sonar") {
   CHECK(s.along_track_resolution_m == 0.05);
   CHECK(s.pulse_length_s == 0.0);
   CHECK(s.chirp_bandwidth_hz == 0.0);
+}
+
+TEST_CASE("bench accuracy: the reference on two threads is the one-thread render, ping for ping") {
+  scene::SceneDesc d = render::builtin_dataset_seabed("clutter").desc;
+  d.seabed.origin_m = Vec2(-30, -30);
+  d.seabed.extent_m = Vec2(60, 60);
+  const scene::Scene sc(d);
+  render::SonarDesc sonar;
+  sonar = bench::isotropic_strip_sonar(sonar, 15.0, 0.05);
+  const render::SonarSetup setup = render::make_sonar_setup(sonar, d.water);
+  std::vector<Pose> poses;
+  for (int k = 0; k < 7; ++k) {
+    Pose p;
+    p.position_W = Vec3(-2.0 + 0.3 * k, 0.0, d.water.depth_m - 5.0);
+    p.roll = 0.05 * k;
+    poses.push_back(p);
+  }
+  for (const auto kind : {render::RendererKind::kProfile, render::RendererKind::kRaytrace}) {
+    const auto r = render::make_ping_renderer(kind, setup);
+    const bench::LineSet one = bench::render_set(sc, *r, poses);
+    const bench::LineSet two = bench::render_reference(sc, *r, poses, 2);
+    REQUIRE(two.lines.size() == poses.size());
+    for (std::size_t k = 0; k < poses.size(); ++k) {
+      CHECK(two.lines[k].port == one.lines[k].port);
+      CHECK(two.lines[k].stbd == one.lines[k].stbd);
+      CHECK(two.traces[k].size() == one.traces[k].size());
+    }
+    const bench::LineErrors e = bench::compare_lines(two, one);
+    CHECK(e.rms_db == 0.0);
+    CHECK(e.lit_bins > 0);
+  }
 }

@@ -77,14 +77,16 @@ scene::Box2 RaytraceRenderer::view_region_for(const Pose& pose,
                                               const RenderOptions& options) const {
   if (options.view_region) return *options.view_region;
   // the ground the ping's fans can reach: across track to the range (both sides), along track
-  // the beam's footprint there plus the tilt of the beam planes by pitch
+  // the beam's footprint there plus the tilt of the beam planes by pitch: a point of a plane
+  // within range r lies at most r·sin(pitch) = r·|n_z| along track (it was r·tan(pitch), which
+  // at a steep pitch made views of hundreds of metres for ground out of range)
   const double r = std::min(options.range_max_m, sonar_.desc.max_range_m) * kRangeMargin;
   const Mat3 R = pose.R_WV();
   const Vec3 n = R.col(0);
   const double h = std::hypot(n.x(), n.y());
   const Vec2 along = h > 1e-6 ? Vec2(n.x() / h, n.y() / h) : heading_vector(pose.yaw);
   const Vec2 across(-along.y(), along.x());
-  double half_along = kViewAlongMargin_m + r * std::abs(n.z()) / std::max(h, 0.1);
+  double half_along = kViewAlongMargin_m + r * std::abs(n.z());
   double widest = 0.0;  // strip: largest offset (m); beam: largest angle (rad)
   for (float a : echo().along())
     widest = std::max(widest, std::abs(static_cast<double>(a)));

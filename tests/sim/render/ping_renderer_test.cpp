@@ -5,10 +5,13 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <numbers>
 
 #include "sim/acoustics/apl_sediment.h"
 #include "sim/acoustics/beam_pattern.h"
 #include "sim/acoustics/bottom_backscatter_apl.h"
+#include "sim/render/ray_fan.h"
+#include "sim/render/raytrace_renderer.h"
 #include "tests/sim/acoustics/oracles/spreading.h"
 #include "tests/sim/render/level_pose.h"
 
@@ -403,4 +406,21 @@ TEST_CASE("render: a target on seabed deeper than at nadir is seen through a nar
   CHECK(scratch.traces[0].highlight_first >= 0);
   CHECK(std::abs(scratch.traces[0].highlight_first * 0.05 - std::hypot(19.65, 3.6)) < 0.2);
   CHECK(scratch.traces[0].shadow_last > scratch.traces[0].highlight_last);
+}
+
+TEST_CASE("render: a ray tracer's view at a steep pitch covers no more than the range") {
+  // a plane tilted by pitch reaches at most r·sin(pitch) along track within range r; the view
+  // was r·tan(pitch) long (11 x the range at 85°), hundreds of metres of BVH out of range
+  const scene::SceneDesc desc = flat_scene("medium_sand");
+  const SonarSetup setup = make_sonar_setup(test_sonar(), desc.water);
+  const RaytraceRenderer rt(setup, default_fidelity(setup));
+  for (double pitch_deg : {0.0, 30.0, 85.0, 89.5}) {
+    Pose pose = level_pose(8.0);
+    pose.pitch = pitch_deg * std::numbers::pi / 180.0;
+    const scene::Box2 b = rt.view_region_for(pose, RenderOptions{});
+    // heading north: along track is x; the range (with margins) and one snapping cell each side
+    const double bound = 2.0 * (kRangeMargin * setup.desc.max_range_m + 2.0) + 2.0 * kViewGrid_m;
+    INFO("pitch " << pitch_deg << ": view " << b.max.x() - b.min.x() << " m along track");
+    CHECK(b.max.x() - b.min.x() <= bound);
+  }
 }

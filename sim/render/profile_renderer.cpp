@@ -572,10 +572,8 @@ class ProfileRenderer::LineMarch {
   double dz_last_, dz_slope_ = 0.0;
   double alpha_last_, alpha_slope_ = 0.0;
   const bool needs_correction_;
-  // No sample deeper along w than this is in range (β ≤ ρ ≤ r): the heights are read no
-  // farther out. Below a steep pitch the plane runs nearly level, and β = dz / w_z of a guessed
-  // or first-read depth would land hundreds of metres away (dz tan(pitch) along track, 860 m
-  // at 7.5 m altitude and 89.5°), making tiles there for samples that are out of range anyway.
+  // No sample deeper along w is in range (β ≤ ρ ≤ r): heights are read no farther out (at a
+  // steep pitch β = dz / w_z lands dz·tan(pitch) along track: 860 m at 7.5 m altitude, 89.5°)
   const double beta_cap_;
   // the block
   Sample block_[kBlock];

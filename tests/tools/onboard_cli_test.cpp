@@ -29,7 +29,6 @@
 #include "drivers/net/udp_receiver.h"
 #include "sim/targets/target_type.h"
 #include "tests/support/temp_dir.h"
-#include "tests/tools/hostile_web_clients.h"
 #include "tests/tools/mcap_reader.h"
 #include "tests/tools/sonarloop_cli.h"
 
@@ -370,44 +369,6 @@ TEST_CASE("onboard cli: --imc sends each located contact as a map feature (a rea
   CHECK(events == contacts);
   CHECK(run_logged(dir, "onboard --xtf " + xtf + " --imc 127.0.0.1:6001", "u") == 2);
   CHECK(run_logged(dir, "onboard --xtf " + xtf + " --imc-system 0x2000", "u") == 2);
-}
-
-TEST_CASE("onboard cli: SIGINT ends onboard --web whatever its web clients do") {
-  // issue 29: slow and endless requests kept the web server, and so the command, alive
-  testing::TempDir dir("onboard-cli-web-hostile");
-  const std::string err = dir.file("err");
-  const pid_t pid = fork();
-  REQUIRE(pid >= 0);
-  if (pid == 0) {
-    std::freopen("/dev/null", "w", stdout);
-    std::freopen(err.c_str(), "w", stderr);
-    execl(kBinary.c_str(), kBinary.c_str(), "onboard", "--listen", "127.0.0.1:0", "--web",
-          "127.0.0.1:0", static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  const std::string marker = "web view on http://127.0.0.1:";
-  int port = 0;
-  for (int k = 0; k < 500 && port == 0; ++k) {
-    const std::string text = slurp(err);
-    const auto at = text.find(marker);
-    if (at != std::string::npos && text.find('/', at + marker.size()) != std::string::npos) {
-      port = std::stoi(text.substr(at + marker.size()));
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  if (port == 0) kill(pid, SIGKILL);
-  REQUIRE(port != 0);
-  testing::HostileWebClients attackers(static_cast<std::uint16_t>(port));
-  // past the server's 5 s request timeout, so that the slow clients are cut off once
-  std::this_thread::sleep_for(std::chrono::milliseconds(6000));
-  kill(pid, SIGINT);
-  const std::optional<int> status = testing::wait_exit_within(pid, 60);  // the time is not tested
-  attackers.stop();
-  INFO(slurp(err));
-  REQUIRE(status);
-  CHECK((WIFEXITED(*status) && WEXITSTATUS(*status) == 0));
-  CHECK(attackers.too_large_seen() >= 2);
-  CHECK(attackers.timeouts_seen() >= 1);
 }
 
 TEST_CASE("onboard cli: usage errors") {

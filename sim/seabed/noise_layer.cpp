@@ -1,6 +1,7 @@
 #include "sim/seabed/noise_layer.h"
 
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <map>
 #include <mutex>
@@ -14,7 +15,7 @@
 namespace sonarloop::seabed {
 namespace {
 
-// One FFT plan and work buffer per size and thread (Eigen's FFT object is not thread-safe).
+// One FFT (twiddles and work buffers) per size and thread.
 Fft2d& thread_fft(int n) {
   thread_local std::unordered_map<int, std::unique_ptr<Fft2d>> plans;
   auto& p = plans[n];
@@ -22,10 +23,26 @@ Fft2d& thread_fft(int n) {
   return *p;
 }
 
-std::vector<std::complex<float>>& thread_buffer(std::size_t n) {
-  thread_local std::vector<std::complex<float>> buf;
-  buf.resize(n);
-  return buf;
+// The real and imaginary planes of one P x P transform, per thread.
+struct Planes {
+  std::vector<float> re;
+  std::vector<float> im;
+};
+Planes& thread_planes(std::size_t n) {
+  thread_local Planes planes;
+  planes.re.resize(n);
+  planes.im.resize(n);
+  return planes;
+}
+
+// (re, im) *= (kre, kim), element by element, over n complex values
+void multiply_spectra(float* re, float* im, const float* kre, const float* kim, std::size_t n) {
+  for (std::size_t m = 0; m < n; ++m) {
+    const float r = re[m] * kre[m] - im[m] * kim[m];
+    const float i = re[m] * kim[m] + im[m] * kre[m];
+    re[m] = r;
+    im[m] = i;
+  }
 }
 
 std::size_t wrap(std::int64_t a, int n) {
@@ -107,7 +124,7 @@ std::shared_ptr<const NoiseLayer::Kernel> NoiseLayer::make_kernel(const NoiseLay
     for (int ky = 0; ky < m; ++ky) {
       const double fy = (ky < m / 2 ? ky : ky - m) * df;
       const double f = spec.spectrum(fx, fy);
-      grid[static_cast<std::size_t>(ky) * mm + static_cast<std::size_t>(kx)] =
+      grid[static_cast<std::size_t>(kx) * mm + static_cast<std::size_t>(ky)] =
           static_cast<float>(std::sqrt(std::max(f, 0.0)));
     }
   }
@@ -132,15 +149,17 @@ std::shared_ptr<const NoiseLayer::Kernel> NoiseLayer::make_kernel(const NoiseLay
     v *= norm;
   // the kernel's spectrum on the P x P convolution grid
   const auto pp = static_cast<std::size_t>(p);
-  auto& spectrum = kernel->spectrum;
-  spectrum.assign(pp * pp, 0.0f);
+  auto& re = kernel->spectrum_re;
+  auto& im = kernel->spectrum_im;
+  re.assign(pp * pp, 0.0f);
+  im.assign(pp * pp, 0.0f);
   for (int a = -k / 2; a < k / 2; ++a) {
     for (int b = -k / 2; b < k / 2; ++b) {
-      spectrum[wrap(a, p) * pp + wrap(b, p)] =
+      re[wrap(a, p) * pp + wrap(b, p)] =
           taps[static_cast<std::size_t>(a + k / 2) * kk + static_cast<std::size_t>(b + k / 2)];
     }
   }
-  Fft2d(p).forward(spectrum);
+  Fft2d(p).forward(re.data(), im.data());
   return kernel;
 }
 
@@ -159,36 +178,36 @@ std::shared_ptr<const NoiseLayer::TilePair> NoiseLayer::make_pair(std::int64_t t
   const int k = k_;
   const int p = p_;
   const auto pp = static_cast<std::size_t>(p);
-  auto& buf = thread_buffer(pp * pp);
+  auto& [re, im] = thread_planes(pp * pp);
   const std::int64_t i_base = ti * k - k / 2;
   const std::int64_t j_even = 2 * pair_j * k - k / 2;
   const std::int64_t j_odd = j_even + k;
   for (int q = 0; q < p; ++q) {
     const std::uint64_t row_key = lattice_row_key(spec_, i_base + q);
-    std::complex<float>* row = buf.data() + static_cast<std::size_t>(q) * pp;
+    float* row_re = re.data() + static_cast<std::size_t>(q) * pp;
+    float* row_im = im.data() + static_cast<std::size_t>(q) * pp;
     for (int r = 0; r < p; ++r) {
-      row[r] = {lattice_white(row_key, j_even + r), lattice_white(row_key, j_odd + r)};
+      row_re[r] = lattice_white(row_key, j_even + r);
+      row_im[r] = lattice_white(row_key, j_odd + r);
     }
   }
   Fft2d& fft = thread_fft(p);
-  fft.forward(buf);
-  const auto& ks = kernel_->spectrum;
-  for (std::size_t n = 0; n < buf.size(); ++n)
-    buf[n] *= ks[n];
-  fft.inverse_rows(buf, k / 2, k);  // the valid rows: the tile's K rows
+  fft.forward(re.data(), im.data());
+  multiply_spectra(re.data(), im.data(), kernel_->spectrum_re.data(), kernel_->spectrum_im.data(),
+                   re.size());
+  fft.inverse_rows(re.data(), im.data(), k / 2, k);  // the valid rows: the tile's K rows
   auto out = std::make_shared<TilePair>();
   const auto kk = static_cast<std::size_t>(k);
   out->even.resize(kk * kk);
   out->odd.resize(kk * kk);
   const auto rms = static_cast<float>(spec_.rms);
   for (int t = 0; t < k; ++t) {
-    const std::complex<float>* src =
-        buf.data() + static_cast<std::size_t>(t + k / 2) * pp + static_cast<std::size_t>(k / 2);
+    const std::size_t from = static_cast<std::size_t>(t + k / 2) * pp + kk / 2;
     float* even = out->even.data() + static_cast<std::size_t>(t) * kk;
     float* odd = out->odd.data() + static_cast<std::size_t>(t) * kk;
-    for (int u = 0; u < k; ++u) {
-      even[u] = rms * src[u].real();
-      odd[u] = rms * src[u].imag();
+    for (std::size_t u = 0; u < kk; ++u) {
+      even[u] = rms * re[from + u];
+      odd[u] = rms * im[from + u];
     }
   }
   return out;

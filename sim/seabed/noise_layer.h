@@ -13,7 +13,6 @@
 // Values between lattice sites come from Catmull–Rom interpolation (C1: slopes and normals are
 // continuous), so a layer synthesised at its own native spacing can be sampled on any grid:
 // changing the heightmap spacing resamples the same surface instead of drawing a new one.
-#include <complex>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -92,8 +91,9 @@ class NoiseLayer {
   int k_;
   int p_;
   struct Kernel {
-    std::vector<float> taps;                    // K×K
-    std::vector<std::complex<float>> spectrum;  // P×P, Fft2d's transposed layout
+    std::vector<float> taps;         // K×K
+    std::vector<float> spectrum_re;  // its P×P spectrum (Fft2d::forward), real part
+    std::vector<float> spectrum_im;  // and imaginary part
   };
   static std::shared_ptr<const Kernel> make_kernel(const NoiseLayerSpec& spec);
 

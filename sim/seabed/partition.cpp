@@ -1,5 +1,6 @@
 #include "sim/seabed/partition.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -75,6 +76,30 @@ int Partition::region_at(double x, double y) const {
   return best;
 }
 
+int Partition::sole_region(double x_lo, double x_hi, double y_lo, double y_hi) const {
+  // A margin for the rounding of the point-by-point distances (far below any blend width).
+  constexpr double kMargin_m = 1e-3;
+  const auto nearest = [&](Vec2 c) {  // distance from c to the box
+    const double dx = std::max({x_lo - c.x(), 0.0, c.x() - x_hi});
+    const double dy = std::max({y_lo - c.y(), 0.0, c.y() - y_hi});
+    return std::sqrt(dx * dx + dy * dy);
+  };
+  const auto farthest = [&](Vec2 c) {  // distance from c to the box's farthest corner
+    const double dx = std::max(std::fabs(x_lo - c.x()), std::fabs(x_hi - c.x()));
+    const double dy = std::max(std::fabs(y_lo - c.y()), std::fabs(y_hi - c.y()));
+    return std::sqrt(dx * dx + dy * dy);
+  };
+  const double need = std::max(blend_width_m_, 0.0) / 2.0 + kMargin_m;
+  for (std::size_t k = 0; k < centres_.size(); ++k) {
+    const double self = farthest(centres_[k]);
+    bool alone = true;
+    for (std::size_t q = 0; q < centres_.size() && alone; ++q)
+      alone = q == k || nearest(centres_[q]) - self >= need;
+    if (alone) return static_cast<int>(k);
+  }
+  return -1;
+}
+
 void Partition::classify_grid(double x0, double y0, double d, int nx, int ny,
                               std::vector<std::uint8_t>& region,
                               std::array<std::vector<float>, kMaxRegions>& weights) const {
@@ -89,6 +114,21 @@ void Partition::classify_grid(double x0, double y0, double d, int nx, int ny,
   if (warp_x_) {
     warp_x_->sample_grid(x0, y0, d, nx, ny, wx.data(), static_cast<std::size_t>(ny));
     warp_y_->sample_grid(x0, y0, d, nx, ny, wy.data(), static_cast<std::size_t>(ny));
+  }
+  // Most grids lie well inside one region: every warped point of the grid is in the box below,
+  // and if one centre is nearer than every other by more than half the blend width across the
+  // whole box, each point's weights are exactly 1 and 0 (blend_weight saturates), as the loop
+  // below would find point by point.
+  const auto [wx_min, wx_max] = std::minmax_element(wx.begin(), wx.end());
+  const auto [wy_min, wy_max] = std::minmax_element(wy.begin(), wy.end());
+  const int sole = sole_region(x0 + *wx_min, x0 + (nx - 1) * d + *wx_max, y0 + *wy_min,
+                               y0 + (ny - 1) * d + *wy_max);
+  if (sole >= 0) {
+    const auto k = static_cast<std::size_t>(sole);
+    std::fill(region.begin(), region.end(), static_cast<std::uint8_t>(k));
+    for (std::size_t q = 0; q < nr; ++q)
+      std::fill(weights[q].begin(), weights[q].end(), q == k ? 1.0f : 0.0f);
+    return;
   }
   std::array<double, kMaxRegions> dist{};
   for (int r = 0; r < nx; ++r) {

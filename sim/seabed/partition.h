@@ -40,6 +40,10 @@ class Partition {
   std::vector<const NoiseLayer*> noise_layers() const;
 
  private:
+  // The region whose weight is 1 at every point of the box [x_lo, x_hi] x [y_lo, y_hi]
+  // (warped positions), or -1 when no region is alone there.
+  int sole_region(double x_lo, double x_hi, double y_lo, double y_hi) const;
+
   std::vector<Vec2> centres_;
   double blend_width_m_;
   std::unique_ptr<NoiseLayer> warp_x_;

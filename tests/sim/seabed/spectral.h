@@ -27,12 +27,10 @@ inline std::vector<double> periodogram(const std::vector<float>& patch, int n) {
           (patch[static_cast<std::size_t>(i) * nn + static_cast<std::size_t>(j)] - mean) * wi * wj);
     }
   }
-  seabed::Fft2d(n).forward(buf);  // transposed layout: [ky][kx]
+  seabed::Fft2d(n).forward(buf);
   std::vector<double> p(nn * nn);
-  for (std::size_t ky = 0; ky < nn; ++ky) {
-    for (std::size_t kx = 0; kx < nn; ++kx)
-      p[kx * nn + ky] = std::norm(buf[ky * nn + kx]);
-  }
+  for (std::size_t m = 0; m < nn * nn; ++m)
+    p[m] = std::norm(buf[m]);
   return p;
 }
 

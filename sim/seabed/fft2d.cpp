@@ -13,37 +13,13 @@ namespace {
 // (both parts) is 64 KiB, two of them 128 KiB.
 constexpr int kStrip = 16;
 
-// The butterflies' runs never overlap; these tell the compiler so (restrict-qualified local
-// pointers do not), so that it vectorises the loops without a run-time overlap check.
-#if defined(__clang__)
-#define SONARLOOP_NO_OVERLAP _Pragma("clang loop vectorize(assume_safety)")
-#elif defined(__GNUC__)
-#define SONARLOOP_NO_OVERLAP _Pragma("GCC ivdep")
-#else
-#define SONARLOOP_NO_OVERLAP
-#endif
-
-// A complex run of floats: real and imaginary parts apart (the strip's two blocks).
-struct Run {
-  float* re;
-  float* im;
-};
-struct ConstRun {
-  const float* re;
-  const float* im;
-};
-
-// n radix-2 butterflies with one twiddle w: s = a + b, d = (a - b) w.
-void radix2(ConstRun a, ConstRun b, Run s, Run d, std::size_t n, float wr, float wi) {
-  const float* ar = a.re;
-  const float* ai = a.im;
-  const float* br = b.re;
-  const float* bi = b.im;
-  float* sr = s.re;
-  float* si = s.im;
-  float* dr = d.re;
-  float* di = d.im;
-  SONARLOOP_NO_OVERLAP
+// n radix-2 butterflies with one twiddle w, on real and imaginary parts apart: s = a + b,
+// d = (a - b) w. The runs never overlap: restrict-qualified parameters tell the compiler so
+// (GCC does not take it from restrict-qualified locals), so that it vectorises the loop without
+// a run-time overlap check.
+void radix2(const float* __restrict ar, const float* __restrict ai, const float* __restrict br,
+            const float* __restrict bi, float* __restrict sr, float* __restrict si,
+            float* __restrict dr, float* __restrict di, std::size_t n, float wr, float wi) {
   for (std::size_t l = 0; l < n; ++l) {
     sr[l] = ar[l] + br[l];
     si[l] = ai[l] + bi[l];
@@ -79,8 +55,8 @@ float* strip_fft(float* x, float* y, int n, int w, const float* tw_re, const flo
       const std::size_t b = (p + m) * run;
       const std::size_t sum = 2 * p * run;
       const std::size_t diff = sum + run;
-      radix2({x + a, x + plane + a}, {x + b, x + plane + b}, {y + sum, y + plane + sum},
-             {y + diff, y + plane + diff}, run, tw_re[p * step], sign * tw_im[p * step]);
+      radix2(x + a, x + plane + a, x + b, x + plane + b, y + sum, y + plane + sum, y + diff,
+             y + plane + diff, run, tw_re[p * step], sign * tw_im[p * step]);
     }
     std::swap(x, y);
     s *= 2;

@@ -28,8 +28,8 @@
 # The build enforces the same map (cmake/SonarloopTargets.cmake, include scopes): a target sees
 # the headers of the folders it links and no others; this check also catches an include that
 # the build allows through a link a layer should not have.
-# Third-party headers belong to one layer each: Embree to sim, yaml-cpp to config, MPI to
-# ranks.
+# Third-party headers belong to one layer each: Embree to sim, yaml-cpp and GDAL to config, MPI
+# to ranks.
 # Usage: scripts/check_layers.sh [SOURCE_ROOT]
 set -euo pipefail
 root=${1:-$(cd "$(dirname "$0")/.." && pwd)}
@@ -58,6 +58,9 @@ declare -A third_party=(
   [embree3]="sim"
   [yaml-cpp]="config"
   [mpi.h]="ranks"
+  [gdal.h]="config"
+  [cpl_error.h]="config"
+  [ogr_srs_api.h]="config"
   [catch2]="tests"
 )
 

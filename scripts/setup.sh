@@ -4,7 +4,7 @@
 set -euo pipefail
 pkgs=(build-essential cmake ninja-build pkg-config
       libembree-dev libeigen3-dev libyaml-cpp-dev catch2 libpng-dev libjpeg-dev
-      libzstd-dev
+      libzstd-dev libgdal-dev
       can-utils python3-can python3-numpy python3-matplotlib python3-yaml iproute2
       openmpi-bin libopenmpi-dev)
 # for the tests only (scripts/test.sh sets SONARLOOP_BUILD_ALL=1): headless Chromium drives the

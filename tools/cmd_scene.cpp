@@ -168,6 +168,15 @@ std::string scene_json(const scene::SceneDesc& desc, const products::SceneImages
       .field("latitude_deg", desc.origin.latitude_deg, 9)
       .field("longitude_deg", desc.origin.longitude_deg, 9)
       .end_object();
+  if (desc.seabed.bathymetry && desc.seabed.bathymetry->grid) {
+    const auto& g = *desc.seabed.bathymetry->grid;
+    w.key("bathymetry")
+        .begin_object()
+        .field("source", g.source)
+        .field("cells_read", g.rows * g.cols)
+        .field("cell_m", g.col_step_m.norm(), 6)
+        .end_object();
+  }
   w.key("origin_m")
       .begin_array()
       .value(img.origin_m.x(), 12)

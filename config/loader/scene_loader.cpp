@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <map>
 
+#include "config/loader/bathymetry_loader.h"
 #include "sim/seabed/sediment.h"
 #include "sim/targets/material.h"
 #include "sim/targets/target_type.h"
@@ -12,6 +13,7 @@
 namespace sonarloop::config {
 namespace {
 
+using scene::BathymetryDesc;
 using scene::ClutterDesc;
 using scene::ElevationDesc;
 using scene::GeoOrigin;
@@ -243,9 +245,51 @@ std::vector<RegionDesc> parse_regions(const Field& f) {
   return regions;
 }
 
+// seabed.bathymetry's keys (the file is read later, once the origin and water depth are known)
+std::optional<BathymetryDesc> parse_bathymetry(const Field& f) {
+  if (f.is_null()) return std::nullopt;
+  f.expect_map("a map with file, values, nodata, origin_xy_m");
+  f.declare({"file", "values", "nodata", "origin_xy_m"});
+  BathymetryDesc b;
+  const std::string file = f.get_string("file", "");
+  if (file.empty()) {
+    f.child("file").fail("is not set",
+                         "the path of a GeoTIFF (.tif), ESRI ASCII (.asc) or XYZ (.xyz) grid, "
+                         "relative to the scenario file's folder");
+  }
+  // relative to the scenario file's folder (to the working folder for a scenario with no file)
+  std::filesystem::path path(file);
+  const std::filesystem::path scenario(f.file());
+  std::error_code ec;
+  if (path.is_relative() && std::filesystem::is_regular_file(scenario, ec)) {
+    path = scenario.parent_path() / path;
+  }
+  b.file = path.lexically_normal().string();
+  // key: one of two words, the first the default; true for the first
+  const auto first_of_two = [&f](std::string_view key, const std::string& first,
+                                 const std::string& second, const std::string& allowed) {
+    const std::string word = f.get_string(key, first);
+    if (word != first && word != second) f.child(key).fail("is '" + word + "'", allowed);
+    return word == first;
+  };
+  b.values_are_depths = first_of_two(
+      "values", "depth", "elevation",
+      "depth (m, positive down) or elevation (m, positive up, negative below the surface)");
+  b.fill_nodata = !first_of_two("nodata", "refuse", "fill",
+                                "refuse (cells without data in the seabed's extent are an error) "
+                                "or fill (from their neighbours)");
+  if (f.has("origin_xy_m")) {
+    b.origin_xy_m = f.get_vec2("origin_xy_m", Vec2::Zero(), Range::any(), "X (east), Y (north)");
+  }
+  f.finish();
+  return b;
+}
+
 SeabedDesc parse_seabed(const Field& f) {
-  f.expect_map("a map with origin_m, extent_m, grid_spacing_m, elevation, partition, regions");
-  f.declare({"origin_m", "extent_m", "grid_spacing_m", "elevation", "partition", "regions"});
+  f.expect_map(
+      "a map with origin_m, extent_m, grid_spacing_m, elevation, partition, regions, bathymetry");
+  f.declare({"origin_m", "extent_m", "grid_spacing_m", "elevation", "partition", "regions",
+             "bathymetry"});
   SeabedDesc s;
   s.origin_m = f.get_vec2("origin_m", s.origin_m, Range::any(), kNorthEast);
   s.extent_m = f.get_vec2("extent_m", s.extent_m, Range::closed(1.0, 100000.0), kNorthEast);
@@ -266,6 +310,7 @@ SeabedDesc parse_seabed(const Field& f) {
   s.elevation = parse_elevation(f.child("elevation"), s);
   s.partition = parse_partition(f.child("partition"));
   s.regions = parse_regions(f.child("regions"));
+  s.bathymetry = parse_bathymetry(f.child("bathymetry"));
   f.finish();
   return s;
 }
@@ -371,6 +416,7 @@ SceneDesc parse_scene_node(const Field& f, bool check_unknown_keys) {
   s.origin = parse_origin(f.child("origin"));
   s.water = parse_water(f.child("water"));
   s.seabed = parse_seabed(f.child("seabed"));
+  if (s.seabed.bathymetry) load_bathymetry(f.child("seabed").child("bathymetry"), s);
   s.targets = parse_targets(f.child("targets"), s.seabed);
   if (check_unknown_keys) f.finish();
   return s;

@@ -399,15 +399,6 @@ SonarDesc read_sonar_map(const Field& f, Source source) {
   return d;
 }
 
-// one line of format_sonar_yaml
-void put(std::string& out, const std::string& pad, std::string_view key, std::string_view value) {
-  out += pad;
-  out += key;
-  out += ": ";
-  out += value;
-  out += "\n";
-}
-
 }  // namespace
 
 std::vector<std::string> builtin_sonar_names() {
@@ -457,31 +448,33 @@ std::string format_sonar_yaml(const SonarDesc& d, int indent) {
   YAML::Emitter name;
   name << YAML::DoubleQuoted << d.name;
   std::string out;
-  put(out, pad, "name", name.c_str());
-  put(out, pad, "frequency_khz", unit_text(d.frequency_hz, YamlUnit::kKilohertz));
-  put(out, pad, "source_level_db", num(d.source_level_db));
-  put(out, pad, "pulse_length_us", unit_text(d.pulse_length_s, YamlUnit::kMicrosecond));
-  put(out, pad, "chirp_bandwidth_khz", unit_text(d.chirp_bandwidth_hz, YamlUnit::kKilohertz));
-  put(out, pad, "array_length_m", num(d.array_length_m));
-  put(out, pad, "array_height_m", num(d.array_height_m));
-  put(out, pad, "depression_deg", num(d.depression_deg));
-  put(out, pad, "max_range_m", num(d.max_range_m));
-  put(out, pad, "bin_size_cm", unit_text(d.bin_size_m, YamlUnit::kCentimetre));
-  put(out, pad, "ping_period_s", num(d.ping_period_s));
-  put(out, pad, "along_track", word_of(kAlongTrackWords, d.along_track));
-  put(out, pad, "along_track_resolution_cm",
-      unit_text(d.along_track_resolution_m, YamlUnit::kCentimetre));
-  put(out, pad, "sample_type", word_of(kSampleTypeWords, d.sample_type));
-  put(out, pad, "tvg", word_of(kTvgWords, tvg_choice(d.tvg)));
-  put(out, pad, "gain_db", num(d.gain_db));
-  put(out, pad, "bottom_model", word_of(kBottomWords, d.bottom_model));
-  put(out, pad, "lambert_mu_db", num(d.lambert_mu_db));
-  put(out, pad, "target_specular_fraction", num(d.target_specular_fraction));
-  put(out, pad, "target_rms_slope", num(d.target_rms_slope));
-  put(out, pad, "speckle", d.speckle ? "true" : "false");
-  put(out, pad, "noise", d.noise ? "true" : "false");
-  put(out, pad, "rays_per_bin", std::to_string(d.rays_per_bin));
-  put(out, pad, "along_track_rays", std::to_string(d.along_track_rays));
+  append_yaml_line(out, pad, "name", name.c_str());
+  append_yaml_line(out, pad, "frequency_khz", unit_text(d.frequency_hz, YamlUnit::kKilohertz));
+  append_yaml_line(out, pad, "source_level_db", num(d.source_level_db));
+  append_yaml_line(out, pad, "pulse_length_us",
+                   unit_text(d.pulse_length_s, YamlUnit::kMicrosecond));
+  append_yaml_line(out, pad, "chirp_bandwidth_khz",
+                   unit_text(d.chirp_bandwidth_hz, YamlUnit::kKilohertz));
+  append_yaml_line(out, pad, "array_length_m", num(d.array_length_m));
+  append_yaml_line(out, pad, "array_height_m", num(d.array_height_m));
+  append_yaml_line(out, pad, "depression_deg", num(d.depression_deg));
+  append_yaml_line(out, pad, "max_range_m", num(d.max_range_m));
+  append_yaml_line(out, pad, "bin_size_cm", unit_text(d.bin_size_m, YamlUnit::kCentimetre));
+  append_yaml_line(out, pad, "ping_period_s", num(d.ping_period_s));
+  append_yaml_line(out, pad, "along_track", word_of(kAlongTrackWords, d.along_track));
+  append_yaml_line(out, pad, "along_track_resolution_cm",
+                   unit_text(d.along_track_resolution_m, YamlUnit::kCentimetre));
+  append_yaml_line(out, pad, "sample_type", word_of(kSampleTypeWords, d.sample_type));
+  append_yaml_line(out, pad, "tvg", word_of(kTvgWords, tvg_choice(d.tvg)));
+  append_yaml_line(out, pad, "gain_db", num(d.gain_db));
+  append_yaml_line(out, pad, "bottom_model", word_of(kBottomWords, d.bottom_model));
+  append_yaml_line(out, pad, "lambert_mu_db", num(d.lambert_mu_db));
+  append_yaml_line(out, pad, "target_specular_fraction", num(d.target_specular_fraction));
+  append_yaml_line(out, pad, "target_rms_slope", num(d.target_rms_slope));
+  append_yaml_line(out, pad, "speckle", d.speckle ? "true" : "false");
+  append_yaml_line(out, pad, "noise", d.noise ? "true" : "false");
+  append_yaml_line(out, pad, "rays_per_bin", std::to_string(d.rays_per_bin));
+  append_yaml_line(out, pad, "along_track_rays", std::to_string(d.along_track_rays));
   return out;
 }
 

@@ -40,17 +40,6 @@ VehicleDesc load_vehicle(const std::string& path) {
 
 namespace {
 
-void put(std::string& out, const std::string& pad, std::string_view key, std::string_view value) {
-  out += pad;
-  out += key;
-  out += ":";
-  if (!value.empty()) {
-    out += " ";
-    out += value;
-  }
-  out += "\n";
-}
-
 // "[north, east]" (appended piece by piece: GCC 12 at -O3 warns falsely, -Wrestrict, on
 // "[" + std::string)
 std::string pair_text(double north, double east) {
@@ -67,7 +56,7 @@ void put_numbers(std::string& out, const std::string& pad, const NumberTable<S>&
                  const S& value, std::optional<DepthMode> mode = std::nullopt) {
   for (const auto& k : table.keys) {
     if (k.mode && mode && *k.mode != *mode) continue;
-    put(out, pad, k.key, unit_text(value.*k.member, k.unit));
+    append_yaml_line(out, pad, k.key, unit_text(value.*k.member, k.unit));
   }
 }
 
@@ -79,42 +68,44 @@ std::string format_vehicle_yaml(const VehicleDesc& v, int indent) {
   const std::string p2 = p1 + "  ";
   const TrajectoryDesc& t = v.trajectory;
   std::string out;
-  put(out, p0, "trajectory", "");
-  put(out, p1, "kind", vehicle::to_string(t.kind));
+  append_yaml_line(out, p0, "trajectory", "");
+  append_yaml_line(out, p1, "kind", vehicle::to_string(t.kind));
   if (t.kind != TrajectoryKind::kLawnmower) {
-    put(out, p1, "start_m", pair_text(t.start.north_m, t.start.east_m));
-    put(out, p1, "heading_deg", unit_text(t.start_heading, YamlUnit::kDegree));
+    append_yaml_line(out, p1, "start_m", pair_text(t.start.north_m, t.start.east_m));
+    append_yaml_line(out, p1, "heading_deg", unit_text(t.start_heading, YamlUnit::kDegree));
   }
   switch (t.kind) {
     case TrajectoryKind::kStraight:
-      put(out, p1, "length_m", format_number(t.straight_length_m));
+      append_yaml_line(out, p1, "length_m", format_number(t.straight_length_m));
       break;
     case TrajectoryKind::kWaypoints: {
       std::string list = "[";
       for (std::size_t i = 0; i < t.waypoints.size(); ++i) {
         list += (i ? ", " : "") + pair_text(t.waypoints[i].north_m, t.waypoints[i].east_m);
       }
-      put(out, p1, "waypoints_m", list + "]");
+      append_yaml_line(out, p1, "waypoints_m", list + "]");
       break;
     }
     case TrajectoryKind::kLawnmower:
-      put(out, p1, "lawnmower", "");
-      put(out, p2, "origin_m", pair_text(t.lawnmower.origin.north_m, t.lawnmower.origin.east_m));
+      append_yaml_line(out, p1, "lawnmower", "");
+      append_yaml_line(out, p2, "origin_m",
+                       pair_text(t.lawnmower.origin.north_m, t.lawnmower.origin.east_m));
       put_numbers(out, p2, lawnmower_numbers(), t.lawnmower);
-      put(out, p2, "legs", std::to_string(t.lawnmower.legs));
-      put(out, p2, "first_turn", vehicle::to_string(t.lawnmower.first_turn));
+      append_yaml_line(out, p2, "legs", std::to_string(t.lawnmower.legs));
+      append_yaml_line(out, p2, "first_turn", vehicle::to_string(t.lawnmower.first_turn));
       break;
   }
-  put(out, p1, "speed_m_s", format_number(t.speed_m_s));
-  put(out, p1, "max_turn_rate_deg_s", unit_text(t.max_turn_rate_rad_s, YamlUnit::kDegree));
-  put(out, p1, "depth", "");
-  put(out, p2, "mode", vehicle::to_string(t.depth.mode));
+  append_yaml_line(out, p1, "speed_m_s", format_number(t.speed_m_s));
+  append_yaml_line(out, p1, "max_turn_rate_deg_s",
+                   unit_text(t.max_turn_rate_rad_s, YamlUnit::kDegree));
+  append_yaml_line(out, p1, "depth", "");
+  append_yaml_line(out, p2, "mode", vehicle::to_string(t.depth.mode));
   put_numbers(out, p2, depth_numbers(), t.depth, t.depth.mode);
-  put(out, p1, "sway", "");
+  append_yaml_line(out, p1, "sway", "");
   put_numbers(out, p2, sway_numbers(), t.sway);
-  put(out, p1, "attitude", "");
+  append_yaml_line(out, p1, "attitude", "");
   put_numbers(out, p2, attitude_numbers(), t.attitude);
-  put(out, p0, "nav", "");
+  append_yaml_line(out, p0, "nav", "");
   put_numbers(out, p1, nav_numbers(), v.nav);
   return out;
 }

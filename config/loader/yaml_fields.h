@@ -264,6 +264,11 @@ auto with_yaml_errors(const std::string& source_name, Fn&& fn) {
 // Shortest text that reads back as the same double ("0.025", "1e+12").
 std::string format_number(double v);
 
+// Appends the YAML line "<pad><key>: <value>" ("<pad><key>:" for an empty value, a map's key)
+// to out: the loaders' printers of what they read.
+void append_yaml_line(std::string& out, std::string_view pad, std::string_view key,
+                      std::string_view value);
+
 // Optimal-string-alignment edit distance (insertions, deletions, substitutions, swaps of two
 // adjacent characters), case-insensitive.
 std::size_t edit_distance(std::string_view a, std::string_view b);

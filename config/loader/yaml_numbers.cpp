@@ -300,6 +300,18 @@ Vec3 Field::as_vec3(const std::array<Range, 3>& ranges, std::string_view compone
   return {v[0], v[1], v[2]};
 }
 
+void append_yaml_line(std::string& out, std::string_view pad, std::string_view key,
+                      std::string_view value) {
+  out += pad;
+  out += key;
+  out += ":";
+  if (!value.empty()) {
+    out += " ";
+    out += value;
+  }
+  out += "\n";
+}
+
 std::string format_number(double v) {
   // plain digits for everyday magnitudes ("100000", "0.025"), exponent form beyond them;
   // either way the shortest text that reads back as the same double

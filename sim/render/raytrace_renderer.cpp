@@ -15,7 +15,7 @@ namespace {
 // Truth rays continue through a target at most this many surfaces before giving up.
 constexpr int kMaxContinuations = 8;
 // The default view also holds this much ground beyond the beam's along-track footprint.
-constexpr double kViewAlongMargin_m = 1.0;
+constexpr double kRaytraceViewMargin_m = 1.0;
 
 struct Hit {
   bool hit = false;
@@ -86,7 +86,7 @@ scene::Box2 RaytraceRenderer::view_region_for(const Pose& pose,
   const double h = std::hypot(n.x(), n.y());
   const Vec2 along = h > 1e-6 ? Vec2(n.x() / h, n.y() / h) : heading_vector(pose.yaw);
   const Vec2 across(-along.y(), along.x());
-  double half_along = kViewAlongMargin_m + r * std::abs(n.z());
+  double half_along = kRaytraceViewMargin_m + r * std::abs(n.z());
   double widest = 0.0;  // strip: largest offset (m); beam: largest angle (rad)
   for (float a : echo().along())
     widest = std::max(widest, std::abs(static_cast<double>(a)));

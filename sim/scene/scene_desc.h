@@ -3,11 +3,13 @@
 // validation, with every default filled in. config/reference.yaml documents each field.
 // Nothing here allocates Embree objects or generates terrain; see scene.h for that.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "sim/frames.h"
+#include "sim/seabed/relief_grid.h"
 #include "sim/seabed/sediment.h"
 #include "sim/targets/target_type.h"
 
@@ -92,6 +94,18 @@ struct PartitionDesc {
   double blend_width_m = 0.5;    // textures cross-fade over this width at a border
 };
 
+// Large-scale relief from a bathymetry grid file (seabed.bathymetry in a scenario): it replaces
+// nothing, it is added to the elevation layer (whose fractal detail then covers the scales the
+// grid cannot show), the textures and the clutter. The loader reads the file and places it in W
+// (config/loader/bathymetry_loader.h).
+struct BathymetryDesc {
+  std::string file;                 // the path, as resolved against the scenario's folder
+  bool values_are_depths = true;    // depths (m, positive down); false: elevations (positive up)
+  bool fill_nodata = false;         // fill cells without data from their neighbours (or refuse)
+  std::optional<Vec2> origin_xy_m;  // a grid without a CRS: its (X = east, Y = north) at W's origin
+  std::shared_ptr<const seabed::ReliefGrid> grid;  // relative to water.depth_m, positive up
+};
+
 struct SeabedDesc {
   Vec2 origin_m = Vec2(-50.0, -50.0);  // south-west corner (north, east) of the extent
   Vec2 extent_m = Vec2(100.0, 100.0);  // size along north and east
@@ -99,6 +113,7 @@ struct SeabedDesc {
   std::vector<RegionDesc> regions;     // 1 to 3
   PartitionDesc partition;
   ElevationDesc elevation;
+  std::optional<BathymetryDesc> bathymetry;
 };
 
 struct MaterialDesc {

@@ -71,13 +71,20 @@ float lattice_white(std::uint64_t row_key, std::int64_t j) {
   return (u(0) + u(1) + u(2) + u(3) - 2.0f * 65536.0f) * kScale;
 }
 
-void catmull_rom_weights(double t, float w[4]) {
+void catmull_rom_weights(double t, double w[4]) {
   const double t2 = t * t;
   const double t3 = t2 * t;
-  w[0] = static_cast<float>(0.5 * (-t3 + 2.0 * t2 - t));
-  w[1] = static_cast<float>(0.5 * (3.0 * t3 - 5.0 * t2 + 2.0));
-  w[2] = static_cast<float>(0.5 * (-3.0 * t3 + 4.0 * t2 + t));
-  w[3] = static_cast<float>(0.5 * (t3 - t2));
+  w[0] = 0.5 * (-t3 + 2.0 * t2 - t);
+  w[1] = 0.5 * (3.0 * t3 - 5.0 * t2 + 2.0);
+  w[2] = 0.5 * (-3.0 * t3 + 4.0 * t2 + t);
+  w[3] = 0.5 * (t3 - t2);
+}
+
+void catmull_rom_weights(double t, float w[4]) {
+  double d[4];
+  catmull_rom_weights(t, d);
+  for (int k = 0; k < 4; ++k)
+    w[k] = static_cast<float>(d[k]);
 }
 
 NoiseLayer::NoiseLayer(NoiseLayerSpec spec, std::size_t cache_bytes)

@@ -107,6 +107,7 @@ float lattice_white(std::uint64_t row_key, std::int64_t j);
 std::uint64_t lattice_row_key(const NoiseLayerSpec& spec, std::int64_t i);
 
 // Catmull–Rom weights for fractional offset t in [0, 1): taps at -1, 0, 1, 2.
-void catmull_rom_weights(double t, float w[4]);
+void catmull_rom_weights(double t, double w[4]);
+void catmull_rom_weights(double t, float w[4]);  // the same, rounded to float
 
 }  // namespace sonarloop::seabed

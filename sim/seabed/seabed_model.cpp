@@ -92,6 +92,7 @@ SeabedModel::SeabedModel(const scene::SceneDesc& desc, SeabedOptions options)
       spacing_m_(desc.seabed.grid_spacing_m),
       water_depth_m_(desc.water.depth_m),
       slope_(desc.seabed.elevation.slope),
+      relief_(desc.seabed.bathymetry ? desc.seabed.bathymetry->grid : nullptr),
       extent_min_(desc.seabed.origin_m),
       extent_max_(desc.seabed.origin_m + desc.seabed.extent_m),
       elevation_(make_elevation(desc, options.cache_bytes / kNoiseLayerBudgetShare)),
@@ -151,6 +152,7 @@ std::int64_t SeabedModel::tile_of(std::int64_t i) const {
 
 double SeabedModel::base_elevation(double x, double y) const {
   double h = slope_.x() * x + slope_.y() * y;
+  if (relief_) h += relief_at(*relief_, x, y);
   if (elevation_) h += elevation_->sample(x, y);
   return h;
 }
@@ -181,13 +183,14 @@ std::shared_ptr<const HeightTile> SeabedModel::make_tile(std::int64_t ti, std::i
   tile->size = t;
   auto& h = tile->elevation_m;
   h.resize(tt * tt);
-  // elevation layer: plane + smoothed pink noise
+  // elevation layer: plane (+ a bathymetry grid's relief) + smoothed pink noise
   for (int r = 0; r < t; ++r) {
     for (int c = 0; c < t; ++c) {
       h[static_cast<std::size_t>(r) * tt + static_cast<std::size_t>(c)] =
           static_cast<float>(slope_.x() * (x0 + r * d) + slope_.y() * (y0 + c * d));
     }
   }
+  if (relief_) add_relief(*relief_, x0, y0, d, t, t, h.data(), tt);
   if (elevation_) elevation_->sample_grid(x0, y0, d, t, t, h.data(), tt, true);
   // partition layer: region of each point and the texture blend weights
   std::vector<std::uint8_t> region;

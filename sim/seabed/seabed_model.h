@@ -2,7 +2,8 @@
 // The synthetic seabed of Pailhas et al. (2010), Sec. 2.1: three layers composed into one
 // heightmap, generated lazily in tiles only where asked.
 //   partition: sediment regions with fractal borders          (partition.h)
-//   elevation: a plane plus smoothed pink noise                 (noise_layer.h, spectra.h)
+//   elevation: a plane plus smoothed pink noise                 (noise_layer.h, spectra.h),
+//              plus the relief of a bathymetry grid when the scenario has one (relief_grid.h)
 //   texture:   per region, sand ripples / rocky / clutter rocks (noise_layer.h, clutter.h)
 // Elevation is positive UP relative to the mean seabed (frames.h): z_W = depth - elevation.
 //
@@ -30,6 +31,7 @@
 #include "sim/seabed/clutter.h"
 #include "sim/seabed/noise_layer.h"
 #include "sim/seabed/partition.h"
+#include "sim/seabed/relief_grid.h"
 #include "sim/seabed/sediment.h"
 #include "sim/seabed/tile_cache.h"
 
@@ -131,6 +133,7 @@ class SeabedModel {
   double spacing_m_;
   double water_depth_m_;
   Vec2 slope_;
+  std::shared_ptr<const ReliefGrid> relief_;  // seabed.bathymetry's grid, or none
   Vec2 extent_min_;
   Vec2 extent_max_;
   std::unique_ptr<NoiseLayer> elevation_;

@@ -160,6 +160,21 @@ LineSet render_reference(const scene::Scene& scene, const render::PingRenderer& 
   return render_lines(scene, renderer, poses, threads);
 }
 
+namespace {
+
+// kRmsFloorDb below the median of the line's lit bins (0 for a dark line)
+float rms_floor(const std::vector<float>& line) {
+  std::vector<float> lit;
+  for (float v : line)
+    if (v > 0.0f) lit.push_back(v);
+  if (lit.empty()) return 0.0f;
+  auto mid = lit.begin() + static_cast<std::ptrdiff_t>(lit.size() / 2);
+  std::nth_element(lit.begin(), mid, lit.end());
+  return static_cast<float>(*mid * std::pow(10.0, -kRmsFloorDb / 10.0));
+}
+
+}  // namespace
+
 LineErrors compare_lines(const LineSet& got, const LineSet& ref) {
   LineErrors e;
   double se = 0.0;
@@ -170,8 +185,9 @@ LineErrors compare_lines(const LineSet& got, const LineSet& ref) {
     for (int side = 0; side < 2; ++side) {
       const auto& a = side == 0 ? got.lines[k].port : got.lines[k].stbd;
       const auto& b = side == 0 ? ref.lines[k].port : ref.lines[k].stbd;
+      const float floor = rms_floor(b);
       for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
-        if (a[i] > 0.0f && b[i] > 0.0f) {
+        if (a[i] > floor && b[i] > floor) {
           const double d = 10.0 * std::log10(static_cast<double>(a[i]) / b[i]);
           se += d * d;
           ++e.lit_bins;

@@ -10,7 +10,11 @@
 //              line with pitch and roll over the rocky seabed
 //
 // Errors (compare_lines):
-//   rms_db_error            RMS of 10·log10(I / I_ref) over bins lit in both renders
+//   rms_db_error            RMS of 10·log10(I / I_ref) over bins lit in both renders, within
+//                           kRmsFloorDb of the reference line's median lit level (bins far
+//                           below it, slivers of seabed lit at the edge of a shadow, are
+//                           below any recorder's range, and their ratio of two near-zero
+//                           energies swings by dB for a micrometre of height)
 //   shadow_edge_error_bins  mean |far edge of a target's shadow − the reference's| (truth traces)
 //   terrain_edge_error_bins mean distance from each lit/dark transition of the line (beyond the
 //                           nadir gap, before the reference's last lit bin) to the nearest one
@@ -36,6 +40,7 @@ struct SectionOutput {
 };
 
 inline constexpr int kMaxEdgeMatchBins = 10;
+inline constexpr double kRmsFloorDb = 60.0;
 
 // `base` made an isotropic-pixel strip sonar (the paper's): range bin, along-track resolution and
 // range resolution all pixel_m, out to range_m.

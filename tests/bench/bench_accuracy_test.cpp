@@ -1,11 +1,13 @@
 // The line comparison of the bench's accuracy sections (bench/bench_accuracy.h) on lines with a
 // known answer: identical lines have no error; a line 10 times brighter is 10 dB off in every
-// bin lit in both; a shadow edge or a lit/dark transition moved by k bins is k bins off; the
-// isotropic strip sonar has the pixel as its bin and along-track resolution; the reference
-// rendered on two threads is the one-thread render, ping for ping.
+// bin lit in both, but for bins 60 dB under the line's level; a shadow edge or a lit/dark
+// transition moved by k bins is k bins off; the isotropic strip sonar has the pixel as its bin and
+// along-track resolution; the reference rendered on two threads is the one-thread render, ping for
+// ping.
 #include "bench/bench_accuracy.h"
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <vector>
 
 #include "sim/render/chip_renderer.h"
@@ -60,6 +62,23 @@ TEST_CASE("bench accuracy: the line comparison measures what it says") {
   const bench::LineErrors shorter = bench::compare_lines(one_ping(1.0f, 78, 50), ref);
   CHECK(shorter.terrain_edges == 5);
   CHECK(shorter.terrain_edge_bins == Approx(bench::kMaxEdgeMatchBins / 5.0));
+}
+
+TEST_CASE("bench accuracy: bins far below the line's level are not in the dB error") {
+  // one bin 150 dB under the others (a sliver lit at a shadow's edge) and 10 dB off: outside
+  // the error; one 40 dB under and 10 dB off: inside it
+  bench::LineSet ref = one_ping(1.0f, 80, 50);
+  bench::LineSet got = ref;
+  ref.lines[0].stbd[20] = 1e-15f;
+  got.lines[0].stbd[20] = 1e-14f;
+  const bench::LineErrors sliver = bench::compare_lines(got, ref);
+  CHECK(sliver.rms_db == 0.0);
+  CHECK(sliver.lit_bins == 59);
+  ref.lines[0].stbd[20] = 1e-4f;
+  got.lines[0].stbd[20] = 1e-3f;
+  const bench::LineErrors faint = bench::compare_lines(got, ref);
+  CHECK(faint.lit_bins == 60);
+  CHECK(faint.rms_db == Approx(10.0 / std::sqrt(60.0)).epsilon(1e-4));
 }
 
 TEST_CASE("bench accuracy: the isotropic strip sonar") {

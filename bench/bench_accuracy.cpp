@@ -4,12 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <memory>
 #include <numbers>
 #include <thread>
 
 #include "config/loader/sonar_loader.h"
 #include "drivers/json/json_writer.h"
 #include "sim/render/chip_renderer.h"
+#include "sim/render/raytrace_renderer.h"
 #include "units/angles.h"
 
 namespace sonarloop::bench {
@@ -62,6 +65,8 @@ struct Case {
   scene::SceneDesc scene;
   render::SonarDesc sonar;
   std::vector<Pose> poses;
+  // the scene, made once for every case over the same description (its tiles are made once)
+  std::shared_ptr<const scene::Scene> built;
 };
 
 // Pings along a north-going line at east 0 across each of the first `targets` targets (the
@@ -228,12 +233,12 @@ void bench_fidelity(const config::Scenario& s, bool full, int threads, const Sec
   }
   scene::SceneDesc ref_desc = s.scene;
   ref_desc.seabed.grid_spacing_m = 0.0125;
-  const scene::Scene ref_scene(ref_desc);
+  const auto ref_scene = std::make_shared<const scene::Scene>(ref_desc);
   const render::SonarSetup base_setup = render::make_sonar_setup(base, s.scene.water);
   const render::Fidelity ref_fid = reference_fidelity(base_setup, full);
   const auto ref_renderer =
       render::make_ping_renderer(render::RendererKind::kRaytrace, base_setup, ref_fid);
-  const LineSet ref = render_reference(ref_scene, *ref_renderer, poses, threads);
+  const LineSet ref = render_reference(*ref_scene, *ref_renderer, poses, threads);
   const std::string ref_name = "raytrace " + std::to_string(ref_fid.rays_per_bin) + "x" +
                                std::to_string(ref_fid.along_track_rays) + ", grid 0.0125 m";
 
@@ -266,16 +271,33 @@ void bench_fidelity(const config::Scenario& s, bool full, int threads, const Sec
   const auto total = static_cast<double>(settings.size());
   if (out.progress) out.progress(label, 0.0, total);
   int done = 0;
+  // one scene per grid (its tiles made once), and the ray tracers of a grid render from the
+  // views of its first (each view built once)
+  std::map<double, std::shared_ptr<const scene::Scene>> scenes;
+  std::map<double, const render::RaytraceRenderer*> first_raytracer;
+  std::vector<std::unique_ptr<render::PingRenderer>> raytracers;  // those, kept
+  scenes[ref_desc.seabed.grid_spacing_m] = ref_scene;  // --full's finest grid is the reference's
+  first_raytracer[ref_desc.seabed.grid_spacing_m] =
+      dynamic_cast<const render::RaytraceRenderer*>(ref_renderer.get());
   for (const Setting& st : settings) {
-    scene::SceneDesc sdsc = s.scene;
-    sdsc.seabed.grid_spacing_m = st.grid_m;
-    const scene::Scene sc(sdsc);
+    auto& built = scenes[st.grid_m];
+    if (!built) {
+      scene::SceneDesc sdsc = s.scene;
+      sdsc.seabed.grid_spacing_m = st.grid_m;
+      built = std::make_shared<const scene::Scene>(sdsc);
+    }
+    const scene::Scene& sc = *built;
     render::Fidelity f = render::default_fidelity(base_setup);
     f.rays_per_bin = st.rays_per_bin;
     f.along_track_rays = st.along;
     f.heightfield_spacing_m = st.heightfield_m;
     f.march_step_per_spacing = st.step_fraction;
-    const auto r = render::make_ping_renderer(st.kind, base_setup, f);
+    std::unique_ptr<render::PingRenderer> r = render::make_ping_renderer(st.kind, base_setup, f);
+    if (auto* rt = dynamic_cast<render::RaytraceRenderer*>(r.get())) {
+      const render::RaytraceRenderer*& first = first_raytracer[st.grid_m];
+      if (first) rt->share_views_with(*first);
+      if (!first) first = rt;
+    }
     const LineSet got = render_set(sc, *r, poses);
     const LineErrors e = compare_lines(got, ref);
     const render::MarchPlan plan = render::march_plan(f, st.grid_m, base.bin_size_m);
@@ -293,6 +315,7 @@ void bench_fidelity(const config::Scenario& s, bool full, int threads, const Sec
     w.field("reference", ref_name);
     w.end_object();
     if (out.emit) out.emit(w);
+    if (r->kind() == render::RendererKind::kRaytrace) raytracers.push_back(std::move(r));
     ++done;
     if (out.progress) out.progress(label, done, total);
   }
@@ -305,10 +328,12 @@ void bench_accuracy(const config::Scenario& s, bool full, int threads, const Sec
   for (const std::string& kind : render::builtin_dataset_seabed_names())
     scenes.emplace_back(s.scene.name + "/" + kind, with_seabed_kind(s.scene, kind));
   for (const auto& [name, desc] : scenes) {
+    const auto built = std::make_shared<const scene::Scene>(desc);
     for (const std::string& preset : config::builtin_sonar_names()) {
       Case c;
       c.name = name + " " + preset;
       c.scene = desc;
+      c.built = built;
       c.sonar = config::builtin_sonar(preset);
       c.poses = poses_across_targets(desc, 2, per_target, 7.5);
       cases.push_back(std::move(c));
@@ -331,6 +356,7 @@ void bench_accuracy(const config::Scenario& s, bool full, int threads, const Sec
       p.yaw = 3.0 * kRadPerDeg * std::sin(0.1 * k);
       c.poses.push_back(p);
     }
+    c.built = std::make_shared<const scene::Scene>(c.scene);
     cases.push_back(std::move(c));
   }
 
@@ -344,7 +370,7 @@ void bench_accuracy(const config::Scenario& s, bool full, int threads, const Sec
   if (out.progress) out.progress(label, 0.0, total);
   int done = 0;
   for (const Case& c : cases) {
-    const scene::Scene sc(c.scene);
+    const scene::Scene& sc = *c.built;
     const render::SonarSetup setup = render::make_sonar_setup(c.sonar, c.scene.water);
     const render::Fidelity ref_fid = reference_fidelity(setup, full);
     const auto ref_r = render::make_ping_renderer(render::RendererKind::kRaytrace, setup, ref_fid);
@@ -352,6 +378,9 @@ void bench_accuracy(const config::Scenario& s, bool full, int threads, const Sec
     for (const render::RendererKind kind :
          {render::RendererKind::kProfile, render::RendererKind::kRaytrace}) {
       const auto r = render::make_ping_renderer(kind, setup);
+      // the ray tracer renders from the reference's views (the same scene and regions)
+      if (auto* rt = dynamic_cast<render::RaytraceRenderer*>(r.get()))
+        rt->share_views_with(dynamic_cast<const render::RaytraceRenderer&>(*ref_r));
       const LineSet got = render_set(sc, *r, c.poses);
       const LineErrors e = compare_lines(got, ref);
       const double ms = 1e3 * got.seconds / static_cast<double>(c.poses.size());

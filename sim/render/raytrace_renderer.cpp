@@ -110,14 +110,15 @@ scene::Box2 RaytraceRenderer::view_region_for(const Pose& pose,
 
 std::shared_ptr<const scene::SceneView> RaytraceRenderer::get_view(
     const scene::Scene& scene, const scene::Box2& region) const {
+  ViewStore& store = *views_;
   std::promise<std::shared_ptr<const scene::SceneView>> promise;
   std::shared_future<std::shared_ptr<const scene::SceneView>> future;
   bool build = false;
   {
-    std::lock_guard<std::mutex> lock(views_mu_);
-    for (auto& e : views_) {
+    std::lock_guard<std::mutex> lock(store.mu);
+    for (auto& e : store.entries) {
       if (e.scene_uid == scene.uid() && same_box(e.region, region)) {
-        e.last_use = ++use_clock_;
+        e.last_use = ++store.use_clock;
         future = e.view;
         break;
       }
@@ -125,16 +126,16 @@ std::shared_ptr<const scene::SceneView> RaytraceRenderer::get_view(
     if (!future.valid()) {
       build = true;
       future = promise.get_future().share();
-      views_.push_back(ViewEntry{scene.uid(), region, future, ++use_clock_});
+      store.entries.push_back(ViewEntry{scene.uid(), region, future, ++store.use_clock});
       // forget the least recently used built views beyond the capacity
-      while (views_.size() > kMaxViews) {
-        auto victim = views_.end();
-        for (auto it = views_.begin(); it != views_.end(); ++it) {
+      while (store.entries.size() > kMaxViews) {
+        auto victim = store.entries.end();
+        for (auto it = store.entries.begin(); it != store.entries.end(); ++it) {
           if (it->view.wait_for(std::chrono::seconds(0)) != std::future_status::ready) continue;
-          if (victim == views_.end() || it->last_use < victim->last_use) victim = it;
+          if (victim == store.entries.end() || it->last_use < victim->last_use) victim = it;
         }
-        if (victim == views_.end()) break;
-        views_.erase(victim);
+        if (victim == store.entries.end()) break;
+        store.entries.erase(victim);
       }
     }
   }
@@ -144,8 +145,8 @@ std::shared_ptr<const scene::SceneView> RaytraceRenderer::get_view(
     promise.set_value(scene.view(region, build_threads_));
   } catch (...) {
     {
-      std::lock_guard<std::mutex> lock(views_mu_);
-      std::erase_if(views_, [&](const ViewEntry& e) {
+      std::lock_guard<std::mutex> lock(store.mu);
+      std::erase_if(store.entries, [&](const ViewEntry& e) {
         return e.scene_uid == scene.uid() && same_box(e.region, region);
       });
     }

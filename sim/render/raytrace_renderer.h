@@ -12,7 +12,8 @@
 // per ping) and is kept as the reference the profile renderer is measured against, and for
 // scenes a heightfield cannot represent (docs/rendering.md).
 //
-// Views: the renderer keeps the Embree views it built (a few, least recently used first out),
+// Views: the renderer keeps the Embree views it built (a few, least recently used first out;
+// shared with other renderers by share_views_with),
 // keyed by scene and region. A ping's view covers RenderOptions::view_region if given, else the
 // ground the ping can reach snapped outwards to a kViewGrid_m grid, so that the view a ping is
 // rendered with depends only on the ping: output is byte-identical whatever was rendered
@@ -45,6 +46,10 @@ class RaytraceRenderer final : public PingRenderer {
 
   // Threads that build a view (tiles and BVH); default: all hardware threads.
   void set_view_build_threads(int threads) { build_threads_ = threads < 1 ? 1 : threads; }
+  // Keeps its views with `other`'s from now on: a view depends only on the scene and the region,
+  // so renderers of different fidelity or sonar over one scene (a bench's reference and the
+  // renderer it measures) build each view once. Call before rendering.
+  void share_views_with(const RaytraceRenderer& other) { views_ = other.views_; }
 
   // The view the ping from `pose` is rendered with (built now if needed).
   std::shared_ptr<const scene::SceneView> view_for(const scene::Scene& scene, const Pose& pose,
@@ -82,10 +87,13 @@ class RaytraceRenderer final : public PingRenderer {
     std::uint64_t last_use = 0;
   };
   static constexpr std::size_t kMaxViews = 4;
+  struct ViewStore {
+    std::mutex mu;
+    std::vector<ViewEntry> entries;
+    std::uint64_t use_clock = 0;
+  };
   int build_threads_;
-  mutable std::mutex views_mu_;
-  mutable std::vector<ViewEntry> views_;
-  mutable std::uint64_t use_clock_ = 0;
+  std::shared_ptr<ViewStore> views_ = std::make_shared<ViewStore>();
 };
 
 }  // namespace sonarloop::render

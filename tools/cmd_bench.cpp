@@ -428,8 +428,8 @@ ratio ("raytrace_over_profile"): on a shared machine, compare ratios, not second
              seabed, shadow-edge errors, against a ray-traced reference on a 1.25 cm grid
   accuracy   each renderer at its default against the reference: the scenario and the four
              seabed kinds with every sonar preset, and a line with pitch and roll
-Without SCENARIO.yaml the embedded default scenario is used. The default run takes about 1.5
-minutes on two cores; --full takes the exhaustive fidelity grid, an 8x8-ray reference (4x4
+Without SCENARIO.yaml the embedded default scenario is used. The default run takes about a
+minute on two cores; --full takes the exhaustive fidelity grid, an 8x8-ray reference (4x4
 otherwise), more chips and pings (about 4 minutes). tools/plot_bench.py charts the fidelity
 lines.
 

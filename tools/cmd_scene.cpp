@@ -174,7 +174,8 @@ std::string scene_json(const scene::SceneDesc& desc, const products::SceneImages
         .begin_object()
         .field("source", g.source)
         .field("cells_read", g.rows * g.cols)
-        .field("cell_m", g.col_step_m.norm(), 6)
+        .field("cell_along_rows_m", g.row_step_m.norm(), 6)
+        .field("cell_along_columns_m", g.col_step_m.norm(), 6)
         .end_object();
   }
   w.key("origin_m")

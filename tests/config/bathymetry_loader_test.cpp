@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -118,6 +119,30 @@ TEST_CASE("bathymetry: a grid with a CRS is placed by the scenario's origin") {
     CHECK(turn_deg == Approx(0.166).margin(0.01));
     CHECK(grid.col_step_m.norm() == Approx(2.0 / 0.9996).margin(2e-4));
   }
+}
+
+TEST_CASE("bathymetry: a grid in latitude and longitude (as EMODnet's and GEBCO's) is placed too") {
+  // the UTM grid resampled to 0.000026 degree cells (1.6 m east, 2.9 m north): the same seabed
+  // within what the bilinear resampling and the coarser rows change (centimetres, 10 at most)
+  const auto utm = parse_scene(scene_text("    file: " + kData + "forth_2m.tif\n"), "b.yaml");
+  const auto geo = parse_scene(scene_text("    file: " + kData + "forth_wgs84.tif\n"), "b.yaml");
+  const auto& g = *geo.seabed.bathymetry->grid;
+  CHECK(g.source.find("WGS 84") != std::string::npos);
+  CHECK(g.col_step_m.norm() == Approx(0.0000259810 * std::numbers::pi / 180.0 * 6.39e6 *
+                                      std::cos(55.9 * std::numbers::pi / 180.0))
+                                   .epsilon(0.01));
+  double sum2 = 0.0;
+  int n = 0;
+  for (double north = -45.0; north <= 45.0; north += 5.0) {
+    for (double east = -45.0; east <= 45.0; east += 5.0) {
+      const double d = seabed::relief_at(g, north, east) -
+                       seabed::relief_at(*utm.seabed.bathymetry->grid, north, east);
+      CHECK(std::abs(d) < 0.15);
+      sum2 += d * d;
+      ++n;
+    }
+  }
+  CHECK(std::sqrt(sum2 / n) < 0.03);
 }
 
 TEST_CASE("bathymetry: a grid without a CRS is placed by origin_xy_m, and a plane stays one") {

@@ -111,6 +111,9 @@ void fill_channel(const render::SonarSetup& s, const xtf::XtfChanInfo& info,
   ch.time_duration_s = static_cast<float>(slant_range_m / kXtfSoundVelocityMps);
   ch.seconds_per_ping_s = static_cast<float>(s.ping_period_s);
   ch.processing_flags = kXtfProcessingTvg;
+  // how the recorder made each sample of several raw ones (none: one raw sample per bin)
+  if (s.desc.raw_samples_per_bin > 1)
+    ch.downsample_method = acoustics::xtf_downsample_method(s.desc.downsample);
   ch.frequency_khz = static_cast<std::uint16_t>(
       std::clamp<long>(std::lround(s.desc.frequency_hz / kHzPerKhz), 0L, 65535L));
 

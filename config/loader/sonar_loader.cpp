@@ -15,9 +15,10 @@ using acoustics::TvgLaw;
 using render::AlongTrackModel;
 using render::SampleType;
 using render::SonarDesc;
+using render::SpeckleModel;
 
 // Every key of a sonar map, in the order of config/reference.yaml (and of "allowed" lists).
-constexpr std::array<std::string_view, 25> kSonarKeys{"name",
+constexpr std::array<std::string_view, 28> kSonarKeys{"name",
                                                       "preset",
                                                       "frequency_khz",
                                                       "source_level_db",
@@ -40,6 +41,9 @@ constexpr std::array<std::string_view, 25> kSonarKeys{"name",
                                                       "target_rms_slope",
                                                       "speckle",
                                                       "noise",
+                                                      "speckle_model",
+                                                      "raw_samples_per_bin",
+                                                      "downsample",
                                                       "rays_per_bin",
                                                       "along_track_rays"};
 
@@ -100,6 +104,12 @@ std::string_view word_of(const std::array<Word<T>, N>& words, T value) {
 // SonarDesc::tvg is optional: empty = auto (the law follows the along-track model)
 enum class TvgChoice { kAuto, kArea, kPoint, kSpherical };
 
+constexpr std::array<Word<SpeckleModel>, 2> kSpeckleModelWords{
+    {{"per_bin", SpeckleModel::kPerBin}, {"pulse", SpeckleModel::kPulse}}};
+constexpr std::array<Word<acoustics::Downsample>, 3> kDownsampleWords{
+    {{"rms", acoustics::Downsample::kRms},
+     {"max", acoustics::Downsample::kMax},
+     {"decimate", acoustics::Downsample::kDecimate}}};
 constexpr std::array<Word<AlongTrackModel>, 2> kAlongTrackWords{
     {{"beam", AlongTrackModel::kBeam}, {"strip", AlongTrackModel::kStrip}}};
 constexpr std::array<Word<SampleType>, 4> kSampleTypeWords{{{"uint8", SampleType::kUint8},
@@ -140,6 +150,14 @@ std::optional<TvgLaw> tvg_law(TvgChoice c) {
   return std::nullopt;
 }
 
+const NameTable<SpeckleModel>& speckle_model_names() {
+  static const auto t = word_table("speckle model", kSpeckleModelWords);
+  return t;
+}
+const NameTable<acoustics::Downsample>& downsample_names() {
+  static const auto t = word_table("downsampling", kDownsampleWords);
+  return t;
+}
 const NameTable<AlongTrackModel>& along_track_names() {
   static const auto t = word_table("known along-track model", kAlongTrackWords);
   return t;
@@ -209,6 +227,13 @@ double samples_per_side(double max_range_m, double bin_size_m) {
 // --- the rules beyond per-key ranges (see sonar_loader.h) ------------------------------------
 
 void check_rules(const Field& f, const SonarDesc& d) {
+  // raw samples are the pulse model's: per-bin speckle has one value per bin
+  if (d.raw_samples_per_bin > 1 && d.speckle_model != SpeckleModel::kPulse) {
+    f.child("raw_samples_per_bin")
+        .fail(std::to_string(d.raw_samples_per_bin) + " raw samples per bin with speckle_model " +
+                  std::string(word_of(kSpeckleModelWords, d.speckle_model)),
+              "1, or speckle_model: pulse (whose field is drawn on the raw samples)");
+  }
   const double c = kNominalSoundSpeed_m_s;
   const double range_m = d.max_range_m;
   // the values as the user wrote them (or would write them)
@@ -391,6 +416,9 @@ SonarDesc read_sonar_map(const Field& f, Source source) {
       get_plain(f, "target_rms_slope", base.target_rms_slope, Range::closed(0.02, 0.5));
   d.speckle = f.get_bool("speckle", base.speckle);
   d.noise = f.get_bool("noise", base.noise);
+  d.speckle_model = f.get_enum("speckle_model", base.speckle_model, speckle_model_names());
+  d.raw_samples_per_bin = f.get_int("raw_samples_per_bin", base.raw_samples_per_bin, 1, 16);
+  d.downsample = f.get_enum("downsample", base.downsample, downsample_names());
   d.rays_per_bin = f.get_int("rays_per_bin", base.rays_per_bin, 0, 64);
   d.along_track_rays = f.get_int("along_track_rays", base.along_track_rays, 0, 256);
 
@@ -473,6 +501,9 @@ std::string format_sonar_yaml(const SonarDesc& d, int indent) {
   append_yaml_line(out, pad, "target_rms_slope", num(d.target_rms_slope));
   append_yaml_line(out, pad, "speckle", d.speckle ? "true" : "false");
   append_yaml_line(out, pad, "noise", d.noise ? "true" : "false");
+  append_yaml_line(out, pad, "speckle_model", word_of(kSpeckleModelWords, d.speckle_model));
+  append_yaml_line(out, pad, "raw_samples_per_bin", std::to_string(d.raw_samples_per_bin));
+  append_yaml_line(out, pad, "downsample", word_of(kDownsampleWords, d.downsample));
   append_yaml_line(out, pad, "rays_per_bin", std::to_string(d.rays_per_bin));
   append_yaml_line(out, pad, "along_track_rays", std::to_string(d.along_track_rays));
   return out;

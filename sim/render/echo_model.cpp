@@ -7,6 +7,8 @@
 #include "common/rng.h"
 #include "sim/acoustics/beam_pattern.h"
 #include "sim/acoustics/noise.h"
+#include "sim/acoustics/pulse_speckle.h"
+#include "sim/acoustics/recorder_downsample.h"
 #include "sim/acoustics/speckle.h"
 #include "sim/acoustics/target_scattering.h"
 #include "sim/acoustics/target_specular.h"
@@ -195,6 +197,34 @@ void EchoModel::start_lines(const RenderOptions& options, PingScratch& scratch) 
   start_bin_labels(options, sonar_.bins, scratch.labels);
 }
 
+void EchoModel::pulse_speckle_line(const std::vector<double>& acc, int k0, int k1,
+                                   std::uint64_t seed, std::uint64_t ping_index, int side,
+                                   PingScratch& scratch, std::vector<float>& line) const {
+  const int m = sonar_.desc.raw_samples_per_bin;
+  const double raw_m = sonar_.desc.bin_size_m / m;
+  const int taps = std::max(1, static_cast<int>(std::lround(sonar_.range_resolution_m / raw_m)));
+  // the pulse reaches taps - 1 raw samples back from the window's first
+  const int raw0 = std::max(0, k0 * m - (taps - 1));
+  const int raw1 = k1 * m;
+  if (raw1 <= raw0) return;
+  auto& mean = scratch.raw_mean;
+  auto& out = scratch.raw_intensity;
+  mean.resize(static_cast<std::size_t>(raw1 - raw0));
+  out.resize(mean.size());
+  // each raw sample's cell has its bin's mean intensity, so that the pulse's average over its
+  // taps is the per-bin blur's mean (over round(resolution / bin) bins)
+  for (int j = raw0; j < raw1; ++j)
+    mean[static_cast<std::size_t>(j - raw0)] = acc[static_cast<std::size_t>(j / m)];
+  Rng rng(seed, RngStream::kSpeckle, ping_index, static_cast<std::uint64_t>(side));
+  acoustics::pulse_speckle(mean, taps, rng, out);
+  for (int k = k0; k < k1; ++k) {
+    const auto first = static_cast<std::size_t>(k * m - raw0);
+    line[static_cast<std::size_t>(k)] = static_cast<float>(acoustics::downsample(
+        std::span<const double>(out.data() + first, static_cast<std::size_t>(m)),
+        sonar_.desc.downsample));
+  }
+}
+
 void EchoModel::finish_lines(const RenderOptions& options, std::uint64_t seed,
                              std::uint64_t ping_index, double altitude, PingScratch& scratch,
                              PingLines& out) const {
@@ -223,6 +253,11 @@ void EchoModel::finish_lines(const RenderOptions& options, std::uint64_t seed,
     if (noise) {
       for (int k = k0; k < k1; ++k)
         acc[static_cast<std::size_t>(k)] += noise_lin_;
+    }
+    // speckle through the pulse on the raw samples, then the recorder's downsampling
+    if (speckle && sonar_.desc.speckle_model == SpeckleModel::kPulse) {
+      pulse_speckle_line(acc, k0, k1, seed, ping_index, side, scratch, line);
+      continue;
     }
     // pulse longer than a bin: moving average over the range resolution (energy preserving)
     if (blur > 1) {

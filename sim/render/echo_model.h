@@ -118,6 +118,14 @@ class EchoModel {
   void finish_lines(const RenderOptions& options, std::uint64_t seed, std::uint64_t ping_index,
                     double altitude, PingScratch& scratch, PingLines& out) const;
 
+  // speckle_model pulse (sonar.h): the bins [k0, k1) of `line` from the mean energies `acc`,
+  // through the pulse on the receiver's raw samples (acoustics/pulse_speckle.h; the pulse is
+  // round(range resolution / raw sample) samples long) and the recorder's downsampling
+  // (acoustics/recorder_downsample.h), drawn from (seed, ping_index, side) like per-bin speckle.
+  void pulse_speckle_line(const std::vector<double>& acc, int k0, int k1, std::uint64_t seed,
+                          std::uint64_t ping_index, int side, PingScratch& scratch,
+                          std::vector<float>& line) const;
+
   // The floor of cos θ_i in dA = r²·dΩ / cos θ_i.
   static constexpr double kMinCosIncidence = 1e-3;
   // σ/sin θ is tabulated uniformly in sin θ up to here (θ ≈ 76°) and looked up by angle above

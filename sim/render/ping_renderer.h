@@ -137,7 +137,8 @@ struct PingScratch {
   PingScratch& operator=(PingScratch&&) noexcept;
 
   std::vector<double> accum[2];
-  std::vector<float> ray_edge;  // sin(world depression) at the vertical ray edges
+  std::vector<double> raw_mean, raw_intensity;  // the receive chain's raw samples (echo_model.h)
+  std::vector<float> ray_edge;                  // sin(world depression) at the vertical ray edges
   std::vector<RTCRayHit> rays;  // the ping's rays (view-local coordinates), then their hits
   std::vector<RayMeta> meta;
   std::vector<TargetTrace> traces;

@@ -10,6 +10,7 @@
 
 #include "sim/acoustics/backscatter_table.h"
 #include "sim/acoustics/beam_pattern.h"
+#include "sim/acoustics/recorder_downsample.h"
 #include "sim/acoustics/tvg.h"
 #include "sim/scene/scene_desc.h"
 
@@ -19,6 +20,13 @@ namespace sonarloop::render {
 // range, full scale 32767, as Sea Scan recorders write them (tests/data/xtf/scotsman-iver2.xtf:
 // no sample above 32767). kUint16 uses the whole unsigned range, full scale 65535.
 enum class SampleType { kUint8, kUint16, kFloat32, kInt16 };
+
+// How speckle is drawn (docs/physics.md §3, "Receive chain").
+enum class SpeckleModel {
+  kPerBin,  // one exponential draw per bin after the pulse's smoothing (acoustics/speckle.h)
+  kPulse,   // a complex field on the raw samples through the pulse (acoustics/pulse_speckle.h):
+            // correlated over the range resolution
+};
 
 // How the along-track (horizontal) beam is modelled.
 enum class AlongTrackModel {
@@ -54,6 +62,11 @@ struct SonarDesc {
   double target_rms_slope = 0.15;  // rms micro-slope per component s of the specular term
   bool speckle = true;             // fully developed (exponential) speckle per bin
   bool noise = true;               // Mellen thermal noise in the receiver band
+  // The receive chain: how speckle is drawn, the receiver's raw samples per recorded bin (more
+  // than 1 with kPulse only) and how the recorder makes a bin of them (XTF DownsampleMethod).
+  SpeckleModel speckle_model = SpeckleModel::kPerBin;
+  int raw_samples_per_bin = 1;
+  acoustics::Downsample downsample = acoustics::Downsample::kRms;
   // Fidelity knobs (RenderOptions, ping_renderer.h): 0 = the default rule
   int rays_per_bin = 0;      // vertical rays per range bin on a flat seabed
   int along_track_rays = 0;  // rays across the horizontal beam or strip

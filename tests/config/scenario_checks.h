@@ -48,6 +48,9 @@ inline void check_same_sonar(const render::SonarDesc& a, const render::SonarDesc
   CHECK(a.target_rms_slope == b.target_rms_slope);
   CHECK(a.speckle == b.speckle);
   CHECK(a.noise == b.noise);
+  CHECK(a.speckle_model == b.speckle_model);
+  CHECK(a.raw_samples_per_bin == b.raw_samples_per_bin);
+  CHECK(a.downsample == b.downsample);
   CHECK(a.rays_per_bin == b.rays_per_bin);
   CHECK(a.along_track_rays == b.along_track_rays);
 }

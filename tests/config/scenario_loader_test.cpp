@@ -68,6 +68,9 @@ const std::vector<std::string> kSonarKeys = {"name",
                                              "target_rms_slope",
                                              "speckle",
                                              "noise",
+                                             "speckle_model",
+                                             "raw_samples_per_bin",
+                                             "downsample",
                                              "rays_per_bin",
                                              "along_track_rays"};
 

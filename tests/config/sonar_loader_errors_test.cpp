@@ -77,6 +77,12 @@ TEST_CASE("sonar_loader: wrong types") {
   expect_sonar_error("noise: 1\n", "noise", {"true or false"});
   expect_sonar_error("rays_per_bin: 2.5\n", "rays_per_bin", {"'2.5' is not an integer", "0 .. 64"});
   expect_sonar_error("along_track_rays: abc\n", "along_track_rays", {"an integer 0 .. 256"});
+  expect_sonar_error("speckle_model: gauss\n", "speckle_model", {"per_bin", "pulse"});
+  expect_sonar_error("downsample: mean\n", "downsample", {"rms", "max", "decimate"});
+  expect_sonar_error("raw_samples_per_bin: 17\n", "raw_samples_per_bin", {"1 .. 16"});
+  // raw samples are the pulse model's
+  expect_sonar_error("raw_samples_per_bin: 3\n", "raw_samples_per_bin",
+                     {"3 raw samples per bin with speckle_model per_bin", "speckle_model: pulse"});
   expect_sonar_error("along_track: [beam]\n", "along_track", {"beam, strip"});
   auto i = expect_sonar_error("along_track: beams\n", "along_track",
                               {"'beams' is not a known along-track model", "allowed: beam, strip"});

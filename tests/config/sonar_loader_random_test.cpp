@@ -67,6 +67,9 @@ const std::vector<KeySpec>& key_specs() {
       {"target_rms_slope", Kind::kReal, 0.02, 0.5, {}},
       {"speckle", Kind::kBool, 0, 0, {}},
       {"noise", Kind::kBool, 0, 0, {}},
+      {"speckle_model", Kind::kWord, 0, 0, {"per_bin", "pulse"}},
+      {"raw_samples_per_bin", Kind::kInt, 1, 16, {}},
+      {"downsample", Kind::kWord, 0, 0, {"rms", "max", "decimate"}},
       {"rays_per_bin", Kind::kInt, 0, 64, {}},
       {"along_track_rays", Kind::kInt, 0, 256, {}},
   };
@@ -128,6 +131,15 @@ void apply(render::SonarDesc& d, const std::string& key, const std::string& text
     d.speckle = text == "true";
   } else if (key == "noise") {
     d.noise = text == "true";
+  } else if (key == "speckle_model") {
+    d.speckle_model =
+        text == "pulse" ? render::SpeckleModel::kPulse : render::SpeckleModel::kPerBin;
+  } else if (key == "raw_samples_per_bin") {
+    d.raw_samples_per_bin = std::stoi(text);
+  } else if (key == "downsample") {
+    d.downsample = text == "max"        ? acoustics::Downsample::kMax
+                   : text == "decimate" ? acoustics::Downsample::kDecimate
+                                        : acoustics::Downsample::kRms;
   } else if (key == "rays_per_bin") {
     d.rays_per_bin = std::stoi(text);
   } else if (key == "along_track_rays") {
@@ -146,6 +158,7 @@ bool rules_hold(const render::SonarDesc& d) {
     if (!(d.chirp_bandwidth_hz < 2 * d.frequency_hz)) return false;
     if (c / (2 * d.chirp_bandwidth_hz) > 4 * d.bin_size_m) return false;
   }
+  if (d.raw_samples_per_bin > 1 && d.speckle_model != render::SpeckleModel::kPulse) return false;
   return true;
 }
 
@@ -176,6 +189,9 @@ void check_near(const render::SonarDesc& a, const render::SonarDesc& b) {
   CHECK(a.target_rms_slope == b.target_rms_slope);
   CHECK(a.speckle == b.speckle);
   CHECK(a.noise == b.noise);
+  CHECK(a.speckle_model == b.speckle_model);
+  CHECK(a.raw_samples_per_bin == b.raw_samples_per_bin);
+  CHECK(a.downsample == b.downsample);
   CHECK(a.rays_per_bin == b.rays_per_bin);
   CHECK(a.along_track_rays == b.along_track_rays);
 }

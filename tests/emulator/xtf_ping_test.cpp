@@ -391,6 +391,27 @@ TEST_CASE("an unknown altitude is written as zero, not NaN", "[xtf_ping]") {
   CHECK(ping.channels[0].ground_range_m == 0.0f);
 }
 
+TEST_CASE("DownsampleMethod says how the recorder made each sample of its raw ones", "[xtf_ping]") {
+  // one raw sample per bin: nothing to say (0); several: 2 MAX, 4 RMS, 0 for decimation
+  const std::pair<acoustics::Downsample, int> cases[] = {{acoustics::Downsample::kMax, 2},
+                                                         {acoustics::Downsample::kRms, 4},
+                                                         {acoustics::Downsample::kDecimate, 0}};
+  for (const auto& [how, code] : cases) {
+    render::SonarSetup s = test_setup(SampleType::kUint16);
+    s.desc.speckle_model = render::SpeckleModel::kPulse;
+    s.desc.downsample = how;
+    const xtf::XtfFileHeader h = make_xtf_file_header(s, "x", "");
+    xtf::XtfPing ping;
+    make_xtf_ping(s, h, ramp_lines(s), test_nav(), ping);
+    CHECK(ping.channels[0].downsample_method == 0);
+    s.desc.raw_samples_per_bin = 3;
+    make_xtf_ping(s, h, ramp_lines(s), test_nav(), ping);
+    CHECK(ping.channels[0].downsample_method == code);
+    CHECK(ping.channels[1].downsample_method == code);
+    CHECK(xtf::decode_ping(xtf::encode_ping(ping, h), h).channels[1].downsample_method == code);
+  }
+}
+
 TEST_CASE("pings written with XtfWriter read back with XtfReader", "[xtf_ping]") {
   testing::TempDir dir("xtf_ping");
   for (const TypeCase& tc : kTypeCases) {

@@ -326,6 +326,67 @@ TEST_CASE("render: speckle on a flat homogeneous patch is exponential") {
   CHECK(double(above) / n == Approx(0.1353).margin(0.005));
 }
 
+TEST_CASE("render: speckle through the pulse keeps the mean and is correlated over it") {
+  // a 0.2 ms pulse is 15 cm: 3 bins of 5 cm. Per bin (the old model) adjacent bins are
+  // independent; through the pulse their intensities correlate as (1 - k/3)^2
+  // (acoustics/pulse_speckle.h); the recorder's max of 3 raw samples of a pulse one raw sample long
+  // raises the mean by H_3 = 11/6 (acoustics/recorder_downsample.h)
+  struct Setting {
+    SpeckleModel model;
+    int raw;
+    acoustics::Downsample how;
+    double pulse_s;
+    double mean;
+    std::array<double, 4> correlation;  // at 0 .. 3 bins
+  };
+  const Setting settings[] = {
+      {SpeckleModel::kPerBin, 1, acoustics::Downsample::kRms, 2e-4, 1.0, {1.0, 0.0, 0.0, 0.0}},
+      {SpeckleModel::kPulse, 1, acoustics::Downsample::kRms, 2e-4, 1.0, {1.0, 4.0 / 9, 1.0 / 9, 0}},
+      {SpeckleModel::kPulse, 3, acoustics::Downsample::kMax, 2e-4 / 9, 11.0 / 6, {}}};
+  const scene::SceneDesc desc = flat_scene("very_coarse_sand");
+  const scene::Scene sc(desc);
+  for (const Setting& st : settings) {
+    SonarDesc sd = test_sonar();
+    sd.speckle = true;
+    sd.pulse_length_s = st.pulse_s;
+    sd.speckle_model = st.model;
+    sd.raw_samples_per_bin = st.raw;
+    sd.downsample = st.how;
+    const SonarSetup setup = make_sonar_setup(sd, desc.water);
+    const auto renderer = make_ping_renderer(RendererKind::kProfile, setup);
+    PingScratch scratch;
+    PingLines mean_line, line;
+    RenderOptions no_speckle;
+    no_speckle.speckle = false;
+    renderer->render(sc, level_pose(8.0), 1, 0, no_speckle, scratch, mean_line);
+    std::vector<double> x;  // intensity over the local mean, bins 250 .. 749 of 300 pings
+    for (std::uint64_t ping = 0; ping < 300; ++ping) {
+      renderer->render(sc, level_pose(8.0), 1, ping, RenderOptions{}, scratch, line);
+      for (std::size_t k = 250; k < 750; ++k)
+        x.push_back(line.stbd[k] / mean_line.stbd[k]);
+    }
+    double s1 = 0.0;
+    for (double v : x)
+      s1 += v;
+    const double mean = s1 / static_cast<double>(x.size());
+    INFO("model " << int(st.model) << ", " << st.raw << " raw samples per bin");
+    CHECK(mean == Approx(st.mean).epsilon(0.015));
+    if (st.raw > 1) continue;
+    for (std::size_t lag = 1; lag <= 3; ++lag) {
+      double sab = 0.0, saa = 0.0;
+      long n = 0;
+      for (std::size_t j = 0; j + lag < x.size(); ++j) {
+        if ((j % 500) + lag >= 500) continue;  // within one ping
+        sab += (x[j] - mean) * (x[j + lag] - mean);
+        saa += (x[j] - mean) * (x[j] - mean);
+        ++n;
+      }
+      INFO("lag " << lag);
+      CHECK(sab / saa == Approx(st.correlation[lag]).margin(0.02));
+    }
+  }
+}
+
 TEST_CASE("render: the same seed renders byte-identical pings, another seed differs") {
   const RendererKind kind = any_renderer();
   scene::SceneDesc desc = flat_scene("very_coarse_sand");

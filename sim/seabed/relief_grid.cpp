@@ -40,6 +40,12 @@ double interpolate(const ReliefGrid& g, Vec2 cell) {
   catmull_rom_weights(u - i, wu);
   catmull_rom_weights(v - j, wv);
   double sum = 0.0;
+  if (i >= 1 && j >= 1 && i + 2 < g.rows && j + 2 < g.cols) {  // inside: no clamping
+    const float* p = g.elevation_m.data() + static_cast<std::size_t>(i - 1) * g.cols + (j - 1);
+    for (int a = 0; a < 4; ++a, p += g.cols)
+      sum += wu[a] * (wv[0] * p[0] + wv[1] * p[1] + wv[2] * p[2] + wv[3] * p[3]);
+    return sum;
+  }
   for (int a = 0; a < 4; ++a) {
     const int row = std::clamp(i - 1 + a, 0, g.rows - 1);
     const float* line = g.elevation_m.data() + static_cast<std::size_t>(row) * g.cols;

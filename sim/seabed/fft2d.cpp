@@ -39,9 +39,8 @@ void radix2(const float* __restrict ar, const float* __restrict ai, const float*
 // so the inner loop is long and vectorised. tw holds exp(-2 pi i k / n), k < n/2. Returns the
 // buffer holding the result (x or y).
 //
-// (Radix-4 stages, with half as many passes over the strip, measured 10-20 % slower here: the
-// strip stays in the first- or second-level cache either way, and eight streams of loads and
-// stores do not fit SSE's 16 registers.)
+// (Radix-4 stages, with half as many passes over the strip, measured 10-20 % slower here; the
+// strip stays in the first- or second-level cache either way.)
 float* strip_fft(float* x, float* y, int n, int w, const float* tw_re, const float* tw_im,
                  float sign) {
   const auto plane = static_cast<std::size_t>(n) * static_cast<std::size_t>(w);

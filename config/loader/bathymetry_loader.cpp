@@ -11,6 +11,7 @@
 #include <limits>
 #include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/geodesy.h"
@@ -105,40 +106,45 @@ Placement place_with_crs(const Field& f, OGRSpatialReferenceH grid_srs, const sc
 // Fills each cell without data (NaN) with the mean of its neighbours that have data, in passes
 // from the edges of the gaps inwards. Returns false when no cell has data.
 bool fill_gaps(std::vector<float>& v, int rows, int cols) {
-  std::vector<float> next;
-  for (;;) {
-    bool any_gap = false;
-    bool any_filled = false;
-    next = v;
-    for (int r = 0; r < rows; ++r) {
-      for (int c = 0; c < cols; ++c) {
-        const auto m = static_cast<std::size_t>(r) * cols + c;
-        if (!std::isnan(v[m])) continue;
-        any_gap = true;
-        double sum = 0.0;
-        int n = 0;
-        for (int dr = -1; dr <= 1; ++dr) {
-          for (int dc = -1; dc <= 1; ++dc) {
-            const int rr = r + dr;
-            const int cc = c + dc;
-            if (rr < 0 || rr >= rows || cc < 0 || cc >= cols) continue;
-            const float u = v[static_cast<std::size_t>(rr) * cols + cc];
-            if (!std::isnan(u)) {
-              sum += u;
-              ++n;
-            }
+  // the cells still without data; each pass looks at them only, not at the whole grid
+  std::vector<std::size_t> gaps;
+  for (std::size_t m = 0; m < v.size(); ++m)
+    if (std::isnan(v[m])) gaps.push_back(m);
+  std::vector<std::pair<std::size_t, float>> filled;
+  std::vector<std::size_t> left;
+  while (!gaps.empty()) {
+    filled.clear();
+    left.clear();
+    for (const std::size_t m : gaps) {
+      const int r = static_cast<int>(m / static_cast<std::size_t>(cols));
+      const int c = static_cast<int>(m % static_cast<std::size_t>(cols));
+      double sum = 0.0;
+      int n = 0;
+      for (int dr = -1; dr <= 1; ++dr) {
+        for (int dc = -1; dc <= 1; ++dc) {
+          const int rr = r + dr;
+          const int cc = c + dc;
+          if (rr < 0 || rr >= rows || cc < 0 || cc >= cols) continue;
+          const float u = v[static_cast<std::size_t>(rr) * cols + cc];
+          if (!std::isnan(u)) {
+            sum += u;
+            ++n;
           }
         }
-        if (n > 0) {
-          next[m] = static_cast<float>(sum / n);
-          any_filled = true;
-        }
+      }
+      if (n > 0) {
+        filled.emplace_back(m, static_cast<float>(sum / n));
+      } else {
+        left.push_back(m);
       }
     }
-    if (!any_gap) return true;
-    if (!any_filled) return false;
-    v.swap(next);
+    if (filled.empty()) return false;
+    // a pass reads the grid as the previous pass left it
+    for (const auto& [m, value] : filled)
+      v[m] = value;
+    gaps.swap(left);
   }
+  return true;
 }
 
 std::string rect_text(Vec2 lo, Vec2 hi) {

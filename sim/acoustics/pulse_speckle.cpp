@@ -13,18 +13,19 @@ void pulse_speckle(std::span<const double> mean_intensity, int pulse_samples, Rn
   const std::size_t n = std::min(mean_intensity.size(), out.size());
   const auto taps = static_cast<std::size_t>(std::max(1, pulse_samples));
   const double weight = 1.0 / static_cast<double>(taps);
-  // each cell's field, unit-power circular Gaussian (variance 1/2 per part) times its amplitude
-  std::vector<std::complex<double>> field(n);
+  // the pulse's running sum over the last `taps` cells, whose fields (unit-power circular
+  // Gaussian, variance 1/2 per part, times the cell's amplitude) are kept in a ring of `taps`
+  std::vector<std::complex<double>> ring(taps);
+  std::complex<double> sum = 0.0;
   for (std::size_t j = 0; j < n; ++j) {
     const double re = rng.normal();
     const double im = rng.normal();
-    field[j] = std::sqrt(0.5 * weight * mean_intensity[j]) * std::complex<double>(re, im);
-  }
-  // the pulse's running sum over the last `taps` cells
-  std::complex<double> sum = 0.0;
-  for (std::size_t j = 0; j < n; ++j) {
-    sum += field[j];
-    if (j >= taps) sum -= field[j - taps];
+    std::complex<double>& slot = ring[j % taps];
+    const std::complex<double> field =
+        std::sqrt(0.5 * weight * mean_intensity[j]) * std::complex<double>(re, im);
+    sum += field;
+    if (j >= taps) sum -= slot;  // the cell taps back leaves the pulse
+    slot = field;
     out[j] = std::norm(sum);
   }
 }

@@ -111,6 +111,11 @@ render::SonarDesc isotropic_strip_sonar(const render::SonarDesc& base, double ra
   sd.along_track_resolution_m = pixel_m;
   sd.pulse_length_s = 0.0;
   sd.chirp_bandwidth_hz = 0.0;
+  return echoes_only(sd);
+}
+
+render::SonarDesc echoes_only(render::SonarDesc sd) {
+  sd.ringdown_s = 0.0;
   return sd;
 }
 
@@ -334,7 +339,7 @@ void bench_accuracy(const config::Scenario& s, bool full, int threads, const Sec
       c.name = name + " " + preset;
       c.scene = desc;
       c.built = built;
-      c.sonar = config::builtin_sonar(preset);
+      c.sonar = echoes_only(config::builtin_sonar(preset));
       c.poses = poses_across_targets(desc, 2, per_target, 7.5);
       cases.push_back(std::move(c));
     }

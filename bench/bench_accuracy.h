@@ -42,8 +42,13 @@ struct SectionOutput {
 inline constexpr int kMaxEdgeMatchBins = 10;
 inline constexpr double kRmsFloorDb = 60.0;
 
+// The sonar with what its recorder adds to every ping whatever the scene (the transmit ring-down)
+// taken out: the bench compares echoes, and bins that read full scale in both lines would dilute
+// the errors and count as edges. (The noise floor goes with RenderOptions::noise, off here.)
+render::SonarDesc echoes_only(render::SonarDesc sd);
+
 // `base` made an isotropic-pixel strip sonar (the paper's): range bin, along-track resolution and
-// range resolution all pixel_m, out to range_m.
+// range resolution all pixel_m, out to range_m; echoes_only.
 render::SonarDesc isotropic_strip_sonar(const render::SonarDesc& base, double range_m,
                                         double pixel_m);
 

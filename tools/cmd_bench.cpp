@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "bench/bench_accuracy.h"
+#include "config/loader/sonar_loader.h"
 #include "drivers/json/json_writer.h"
 #include "emulator/emulator.h"
 #include "sim/render/chip_renderer.h"
@@ -319,7 +320,60 @@ void bench_chips(const config::Scenario& s, int count) {
   }
 }
 
-// (e) the emulator at --rate max (no outputs) along a straight line over a seabed stretched to
+// (e) the receive chain's cost (docs/physics.md §3, "Receive chain"): ms per ping of the
+// iver2_600khz preset over the scenario's seabed (profile renderer, one thread, the scene made
+// before timing), from every effect off to the preset, adding one effect at a time. The rounds
+// interleave the settings and each keeps its fastest, so a busy moment does not land on one.
+void bench_chain(const config::Scenario& s, int rounds) {
+  render::SonarDesc sd = config::builtin_sonar("iver2_600khz");
+  struct Step {
+    const char* name;
+    render::SonarDesc desc;
+  };
+  std::vector<Step> steps;
+  render::SonarDesc d = sd;
+  d.speckle_model = render::SpeckleModel::kPerBin;
+  d.raw_samples_per_bin = 1;
+  d.downsample = acoustics::Downsample::kRms;
+  d.noise_floor_db_fs = 0.0;
+  d.ringdown_s = 0.0;
+  steps.push_back({"per_bin", d});
+  d.speckle_model = render::SpeckleModel::kPulse;
+  steps.push_back({"pulse_speckle", d});
+  d.raw_samples_per_bin = sd.raw_samples_per_bin;
+  d.downsample = sd.downsample;
+  steps.push_back({"raw_samples_downsampled", d});
+  d.noise_floor_db_fs = sd.noise_floor_db_fs;
+  steps.push_back({"noise_floor", d});
+  d.ringdown_s = sd.ringdown_s;
+  steps.push_back({"ringdown", d});
+  const scene::Scene sc(s.scene);
+  const auto poses = line_poses(-20.0, 0.0, 40.0, 0.1, s.scene.water.depth_m - 6.0);
+  std::vector<std::unique_ptr<render::PingRenderer>> renderers;
+  for (const Step& st : steps) {
+    renderers.push_back(render::make_ping_renderer(
+        RendererKind::kProfile, render::make_sonar_setup(st.desc, s.scene.water)));
+  }
+  render_poses(sc, *renderers[0], poses, 1);  // make the scene
+  std::vector<double> best(steps.size(), 1e300);
+  for (int round = 0; round < rounds; ++round) {
+    for (std::size_t i = 0; i < steps.size(); ++i)
+      best[i] = std::min(best[i], render_poses(sc, *renderers[i], poses, 1));
+  }
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const double ms = 1e3 * best[i] / static_cast<double>(poses.size());
+    json::Writer w;
+    w.begin_object().field("bench", "receive_chain").field("sonar", sd.name);
+    w.field("with", steps[i].name).field("renderer", "profile").field("threads", 1);
+    w.field("pings", static_cast<std::uint64_t>(poses.size()));
+    w.field("ms_per_ping", ms, 4);
+    w.field("over_per_bin", best[i] / best[0], 4);
+    w.end_object();
+    emit(w);
+  }
+}
+
+// (f) the emulator at --rate max (no outputs) along a straight line over a seabed stretched to
 // hold it: pings per second and start-up
 void bench_run(const config::Scenario& base, int threads, double profile_length_m,
                double raytrace_length_m) {
@@ -369,14 +423,15 @@ int run_bench(const std::vector<std::string>& argv) {
   const int threads =
       static_cast<int>(args.get_int("--threads", 1, 256)
                            .value_or(std::max(1u, std::thread::hardware_concurrency())));
-  const std::vector<std::string> all = {"image", "realtime", "split",   "chips",
-                                        "run",   "fidelity", "accuracy"};
+  const std::vector<std::string> all = {"image", "realtime", "split",    "chips",
+                                        "chain", "run",      "fidelity", "accuracy"};
   std::vector<std::string> only = args.get_all("--only");
   if (only.empty()) only = all;
   for (const auto& o : only) {
     if (std::find(all.begin(), all.end(), o) == all.end()) {
       throw UsageError("--only: '" + o +
-                       "' is not one of image, realtime, split, chips, run, fidelity, accuracy");
+                       "' is not one of image, realtime, split, chips, chain, run, fidelity, "
+                       "accuracy");
     }
   }
   const auto want = [&](const char* name) {
@@ -398,6 +453,7 @@ int run_bench(const std::vector<std::string>& argv) {
   if (want("realtime")) bench_realtime(s, threads);
   if (want("split")) bench_split(s);
   if (want("chips")) bench_chips(s, full ? 200 : 40);
+  if (want("chain")) bench_chain(s, full ? 5 : 3);
   if (want("run")) bench_run(s, threads, 1000.0, full ? 300.0 : 100.0);
   SectionPrinter printer;
   if (want("fidelity")) bench::bench_fidelity(s, full, threads, printer.output());
@@ -422,6 +478,9 @@ ratio ("raytrace_over_profile"): on a shared machine, compare ratios, not second
   split      where a ping's time goes: ray tracer (generate, intersect, shade, against bare
              Embree on the same rays); profile (march and shade, target rays, cold tiles)
   chips      ms per 5 cm highlight and shadow chip of the resolution study (one thread)
+  chain      the receive chain's cost: ms per ping of the iver2_600khz preset with its
+             effects added one at a time (speckle through the pulse, raw samples and the
+             recorder's max, noise floor, ring-down), against per-bin speckle
   run        the emulator at --rate max on a straight line (1 km for the profile renderer):
              pings per second and start-up
   fidelity   every fidelity setting of both renderers: ms per ping, RMS dB error on the

@@ -18,7 +18,7 @@ using render::SonarDesc;
 using render::SpeckleModel;
 
 // Every key of a sonar map, in the order of config/reference.yaml (and of "allowed" lists).
-constexpr std::array<std::string_view, 28> kSonarKeys{"name",
+constexpr std::array<std::string_view, 30> kSonarKeys{"name",
                                                       "preset",
                                                       "frequency_khz",
                                                       "source_level_db",
@@ -44,6 +44,8 @@ constexpr std::array<std::string_view, 28> kSonarKeys{"name",
                                                       "speckle_model",
                                                       "raw_samples_per_bin",
                                                       "downsample",
+                                                      "noise_floor_db_fs",
+                                                      "ringdown_us",
                                                       "rays_per_bin",
                                                       "along_track_rays"};
 
@@ -391,7 +393,7 @@ SonarDesc read_sonar_map(const Field& f, Source source) {
   d.chirp_bandwidth_hz = get_si(f, "chirp_bandwidth_khz", base.chirp_bandwidth_hz,
                                 YamlUnit::kKilohertz, Range::closed(0, 500).with_note("0 = CW"));
   d.array_length_m = get_plain(f, "array_length_m", base.array_length_m, Range::closed(0.02, 10));
-  d.array_height_m = get_plain(f, "array_height_m", base.array_height_m, Range::closed(0.005, 1));
+  d.array_height_m = get_plain(f, "array_height_m", base.array_height_m, Range::closed(0.001, 1));
   d.depression_deg = get_plain(f, "depression_deg", base.depression_deg, Range::closed(0, 60));
   d.max_range_m = get_plain(f, "max_range_m", base.max_range_m, Range::closed(1, 1000));
   d.bin_size_m =
@@ -419,6 +421,11 @@ SonarDesc read_sonar_map(const Field& f, Source source) {
   d.speckle_model = f.get_enum("speckle_model", base.speckle_model, speckle_model_names());
   d.raw_samples_per_bin = f.get_int("raw_samples_per_bin", base.raw_samples_per_bin, 1, 16);
   d.downsample = f.get_enum("downsample", base.downsample, downsample_names());
+  d.noise_floor_db_fs =
+      get_plain(f, "noise_floor_db_fs", base.noise_floor_db_fs,
+                Range::closed(-150, 0).with_note("dB re full scale after TVG and gain; 0 = none"));
+  d.ringdown_s = get_si(f, "ringdown_us", base.ringdown_s, YamlUnit::kMicrosecond,
+                        Range::closed(0, 10000).with_note("0 = none"));
   d.rays_per_bin = f.get_int("rays_per_bin", base.rays_per_bin, 0, 64);
   d.along_track_rays = f.get_int("along_track_rays", base.along_track_rays, 0, 256);
 
@@ -504,6 +511,8 @@ std::string format_sonar_yaml(const SonarDesc& d, int indent) {
   append_yaml_line(out, pad, "speckle_model", word_of(kSpeckleModelWords, d.speckle_model));
   append_yaml_line(out, pad, "raw_samples_per_bin", std::to_string(d.raw_samples_per_bin));
   append_yaml_line(out, pad, "downsample", word_of(kDownsampleWords, d.downsample));
+  append_yaml_line(out, pad, "noise_floor_db_fs", num(d.noise_floor_db_fs));
+  append_yaml_line(out, pad, "ringdown_us", unit_text(d.ringdown_s, YamlUnit::kMicrosecond));
   append_yaml_line(out, pad, "rays_per_bin", std::to_string(d.rays_per_bin));
   append_yaml_line(out, pad, "along_track_rays", std::to_string(d.along_track_rays));
   return out;

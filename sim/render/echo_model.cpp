@@ -12,7 +12,9 @@
 #include "sim/acoustics/speckle.h"
 #include "sim/acoustics/target_scattering.h"
 #include "sim/acoustics/target_specular.h"
+#include "sim/acoustics/transmit_ringdown.h"
 #include "sim/render/bin_labels.h"
+#include "sim/render/quantise.h"
 #include "sim/seabed/sediment.h"
 
 namespace sonarloop::render {
@@ -124,6 +126,17 @@ EchoModel::EchoModel(const SonarSetup& s, const Fidelity& fidelity)
       acoustics::directivity_index_rect_db(sd.array_length_m, sd.array_height_m, s.wavelength_m);
   const double nl = acoustics::noise_band_level_db(sd.frequency_hz, s.bandwidth_hz) - di;
   noise_lin_ = std::pow(10.0, nl / 10.0);
+  // the recorder's floor, given after TVG and gain, as the echo intensity that reads as it
+  if (sd.noise_floor_db_fs < 0.0) {
+    floor_bin_.resize(static_cast<std::size_t>(s.bins));
+    for (int k = 0; k < s.bins; ++k)
+      floor_bin_[static_cast<std::size_t>(k)] =
+          intensity_at_level_db_fs(s, sd.noise_floor_db_fs, (k + 0.5) * sd.bin_size_m);
+  }
+  const int ring =
+      std::min(s.bins, acoustics::ringdown_bins(sd.ringdown_s, s.sound_speed_m_s, sd.bin_size_m));
+  for (int k = 0; k < ring; ++k)
+    ringdown_full_scale_.push_back(intensity_at_level_db_fs(s, 0.0, (k + 0.5) * sd.bin_size_m));
 }
 
 double EchoModel::vertical_pattern(double off_axis_sin) const {
@@ -254,35 +267,51 @@ void EchoModel::finish_lines(const RenderOptions& options, std::uint64_t seed,
       for (int k = k0; k < k1; ++k)
         acc[static_cast<std::size_t>(k)] += noise_lin_;
     }
+    // the recorder's floor: noise like the sea's, on every raw sample
+    if (options.noise && !floor_bin_.empty()) {
+      for (int k = k0; k < k1; ++k)
+        acc[static_cast<std::size_t>(k)] += floor_bin_[static_cast<std::size_t>(k)];
+    }
     // speckle through the pulse on the raw samples, then the recorder's downsampling
     if (speckle && sonar_.desc.speckle_model == SpeckleModel::kPulse) {
       pulse_speckle_line(acc, k0, k1, seed, ping_index, side, scratch, line);
-      continue;
-    }
-    // pulse longer than a bin: moving average over the range resolution (energy preserving)
-    if (blur > 1) {
-      double sum = 0.0;
-      for (int k = first_read; k < k1; ++k) {
-        sum += acc[static_cast<std::size_t>(k)];
-        if (k - blur >= first_read) sum -= acc[static_cast<std::size_t>(k - blur)];
-        if (k >= k0) line[static_cast<std::size_t>(k)] = static_cast<float>(sum / blur);
-      }
-      for (int k = k0; k < k1; ++k)
-        acc[static_cast<std::size_t>(k)] = line[static_cast<std::size_t>(k)];
-    }
-    // fully developed speckle from the stream (seed, ping, side), drawn from the window's first
-    // bin on
-    if (speckle) {
-      Rng rng(seed, RngStream::kSpeckle, ping_index, static_cast<std::uint64_t>(side));
-      for (int k = k0; k < k1; ++k) {
-        const auto i = static_cast<std::size_t>(k);
-        line[i] = static_cast<float>(acoustics::apply_speckle(acc[i], rng.uniform_pos()));
-      }
     } else {
-      for (int k = k0; k < k1; ++k) {
-        const auto i = static_cast<std::size_t>(k);
-        line[i] = static_cast<float>(acc[i]);
-      }
+      per_bin_line(acc, k0, k1, first_read, blur, speckle, seed, ping_index, side, line);
+    }
+    // the transmit pulse and ring-down saturate the record's first bins
+    const int ring_end = std::min(k1, static_cast<int>(ringdown_full_scale_.size()));
+    for (int k = k0; k < ring_end; ++k)
+      line[static_cast<std::size_t>(k)] =
+          static_cast<float>(ringdown_full_scale_[static_cast<std::size_t>(k)]);
+  }
+}
+
+void EchoModel::per_bin_line(std::vector<double>& acc, int k0, int k1, int first_read, int blur,
+                             bool speckle, std::uint64_t seed, std::uint64_t ping_index, int side,
+                             std::vector<float>& line) const {
+  // pulse longer than a bin: moving average over the range resolution (energy preserving)
+  if (blur > 1) {
+    double sum = 0.0;
+    for (int k = first_read; k < k1; ++k) {
+      sum += acc[static_cast<std::size_t>(k)];
+      if (k - blur >= first_read) sum -= acc[static_cast<std::size_t>(k - blur)];
+      if (k >= k0) line[static_cast<std::size_t>(k)] = static_cast<float>(sum / blur);
+    }
+    for (int k = k0; k < k1; ++k)
+      acc[static_cast<std::size_t>(k)] = line[static_cast<std::size_t>(k)];
+  }
+  // fully developed speckle from the stream (seed, ping, side), drawn from the window's first
+  // bin on
+  if (speckle) {
+    Rng rng(seed, RngStream::kSpeckle, ping_index, static_cast<std::uint64_t>(side));
+    for (int k = k0; k < k1; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      line[i] = static_cast<float>(acoustics::apply_speckle(acc[i], rng.uniform_pos()));
+    }
+  } else {
+    for (int k = k0; k < k1; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      line[i] = static_cast<float>(acc[i]);
     }
   }
 }

@@ -125,6 +125,12 @@ class EchoModel {
   void pulse_speckle_line(const std::vector<double>& acc, int k0, int k1, std::uint64_t seed,
                           std::uint64_t ping_index, int side, PingScratch& scratch,
                           std::vector<float>& line) const;
+  // speckle_model per_bin: the bins [k0, k1) of `line` from `acc` blurred over `blur` bins (read
+  // from first_read on; acc then holds the blurred means) with one exponential speckle draw per
+  // bin from (seed, ping_index, side) when `speckle`.
+  void per_bin_line(std::vector<double>& acc, int k0, int k1, int first_read, int blur,
+                    bool speckle, std::uint64_t seed, std::uint64_t ping_index, int side,
+                    std::vector<float>& line) const;
 
   // The floor of cos θ_i in dA = r²·dΩ / cos θ_i.
   static constexpr double kMinCosIncidence = 1e-3;
@@ -152,6 +158,10 @@ class EchoModel {
   std::vector<double> range_factor_bin_;
   double alpha_np_ = 0.0;   // two-way absorption per metre (nepers of intensity)
   double noise_lin_ = 0.0;  // mean noise intensity per bin
+  // the recorder's noise floor as a mean intensity per bin (empty: none), and the intensity at
+  // full scale of each bin the transmit ring-down saturates
+  std::vector<double> floor_bin_;
+  std::vector<double> ringdown_full_scale_;
   double k_half_height_ = 0.0;
 };
 

@@ -47,6 +47,12 @@ double relative_amplitude(const SonarSetup& s, double intensity, double range_m)
   return std::pow(10.0, (level - full_scale_level_db(s) + s.desc.gain_db) / 20.0);
 }
 
+double intensity_at_level_db_fs(const SonarSetup& s, double level_db_fs, double range_m) {
+  const double level = level_db_fs + full_scale_level_db(s) - s.desc.gain_db -
+                       acoustics::tvg_db(range_m, s.alpha_db_per_m, s.tvg);
+  return std::pow(10.0, level / 10.0);
+}
+
 void quantise_line(const SonarSetup& s, std::span<const float> in, std::span<std::uint8_t> out) {
   quantise(s, in, out, 255.0, true);
 }

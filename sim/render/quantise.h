@@ -28,6 +28,10 @@ double full_scale_level_db(const SonarSetup& sonar);
 // Amplitude relative to full scale of one bin's intensity at slant range range_m (unclipped).
 double relative_amplitude(const SonarSetup& sonar, double intensity, double range_m);
 
+// The intensity at slant range range_m whose amplitude is level_db_fs dB re full scale
+// (20·log10 of relative_amplitude): relative_amplitude's inverse.
+double intensity_at_level_db_fs(const SonarSetup& sonar, double level_db_fs, double range_m);
+
 // Quantises one side's line (near to far) into `out` (same length). Bin k is at the centre
 // range (k + 0.5)·bin_size_m.
 void quantise_line(const SonarSetup& sonar, std::span<const float> intensity,

@@ -67,6 +67,12 @@ struct SonarDesc {
   SpeckleModel speckle_model = SpeckleModel::kPerBin;
   int raw_samples_per_bin = 1;
   acoustics::Downsample downsample = acoustics::Downsample::kRms;
+  // The recorder's noise floor: circular Gaussian noise of this mean power in dB re full scale²
+  // after TVG and gain, on every raw sample (docs/physics.md §3, "Receive chain"); 0 = none.
+  double noise_floor_db_fs = 0.0;
+  // Transmit pulse and ring-down: the receiver is saturated from transmission until this time,
+  // so the bins whose centre it reaches record full scale; 0 = none.
+  double ringdown_s = 0.0;
   // Fidelity knobs (RenderOptions, ping_renderer.h): 0 = the default rule
   int rays_per_bin = 0;      // vertical rays per range bin on a flat seabed
   int along_track_rays = 0;  // rays across the horizontal beam or strip

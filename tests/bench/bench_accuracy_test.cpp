@@ -94,6 +94,23 @@ TEST_CASE("bench accuracy: the isotropic strip sonar") {
   CHECK(s.chirp_bandwidth_hz == 0.0);
 }
 
+TEST_CASE("bench accuracy: compared lines hold echoes only, not the recorder's ring-down") {
+  render::SonarDesc base;
+  base.ringdown_s = 320e-6;
+  base.noise_floor_db_fs = -45.0;
+  CHECK(bench::echoes_only(base).ringdown_s == 0.0);
+  CHECK(bench::isotropic_strip_sonar(base, 30.0, 0.05).ringdown_s == 0.0);
+  // a ring-down that read full scale in both lines would be edges at distance 0
+  bench::LineSet a = one_ping(1.0f, 90, 55);
+  bench::LineSet b = one_ping(1.0f, 90, 55);
+  const auto clean = bench::compare_lines(a, b);
+  for (auto* s : {&a, &b}) {
+    for (std::size_t k = 0; k < 5; ++k)
+      s->lines[0].stbd[k] = 1e3f;
+  }
+  CHECK(bench::compare_lines(a, b).terrain_edges > clean.terrain_edges);
+}
+
 TEST_CASE("bench accuracy: the reference on two threads is the one-thread render, ping for ping") {
   scene::SceneDesc d = render::builtin_dataset_seabed("clutter").desc;
   d.seabed.origin_m = Vec2(-30, -30);

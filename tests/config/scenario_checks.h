@@ -51,6 +51,8 @@ inline void check_same_sonar(const render::SonarDesc& a, const render::SonarDesc
   CHECK(a.speckle_model == b.speckle_model);
   CHECK(a.raw_samples_per_bin == b.raw_samples_per_bin);
   CHECK(a.downsample == b.downsample);
+  CHECK(a.noise_floor_db_fs == b.noise_floor_db_fs);
+  CHECK(a.ringdown_s == b.ringdown_s);
   CHECK(a.rays_per_bin == b.rays_per_bin);
   CHECK(a.along_track_rays == b.along_track_rays);
 }

@@ -51,7 +51,7 @@ const std::vector<KeySpec>& key_specs() {
       {"pulse_length_us", Kind::kReal, 0, 10000, {}},
       {"chirp_bandwidth_khz", Kind::kReal, 0, 500, {}},
       {"array_length_m", Kind::kReal, 0.02, 10, {}},
-      {"array_height_m", Kind::kReal, 0.005, 1, {}},
+      {"array_height_m", Kind::kReal, 0.001, 1, {}},
       {"depression_deg", Kind::kReal, 0, 60, {}},
       {"max_range_m", Kind::kReal, 1, 1000, {}},
       {"bin_size_cm", Kind::kReal, 1, 100, {}},
@@ -70,6 +70,8 @@ const std::vector<KeySpec>& key_specs() {
       {"speckle_model", Kind::kWord, 0, 0, {"per_bin", "pulse"}},
       {"raw_samples_per_bin", Kind::kInt, 1, 16, {}},
       {"downsample", Kind::kWord, 0, 0, {"rms", "max", "decimate"}},
+      {"noise_floor_db_fs", Kind::kReal, -150, 0, {}},
+      {"ringdown_us", Kind::kReal, 0, 10000, {}},
       {"rays_per_bin", Kind::kInt, 0, 64, {}},
       {"along_track_rays", Kind::kInt, 0, 256, {}},
   };
@@ -140,6 +142,10 @@ void apply(render::SonarDesc& d, const std::string& key, const std::string& text
     d.downsample = text == "max"        ? acoustics::Downsample::kMax
                    : text == "decimate" ? acoustics::Downsample::kDecimate
                                         : acoustics::Downsample::kRms;
+  } else if (key == "noise_floor_db_fs") {
+    d.noise_floor_db_fs = num();
+  } else if (key == "ringdown_us") {
+    d.ringdown_s = num() / 1e6;
   } else if (key == "rays_per_bin") {
     d.rays_per_bin = std::stoi(text);
   } else if (key == "along_track_rays") {
@@ -192,6 +198,8 @@ void check_near(const render::SonarDesc& a, const render::SonarDesc& b) {
   CHECK(a.speckle_model == b.speckle_model);
   CHECK(a.raw_samples_per_bin == b.raw_samples_per_bin);
   CHECK(a.downsample == b.downsample);
+  CHECK(a.noise_floor_db_fs == b.noise_floor_db_fs);
+  CHECK(near(a.ringdown_s, b.ringdown_s));
   CHECK(a.rays_per_bin == b.rays_per_bin);
   CHECK(a.along_track_rays == b.along_track_rays);
 }

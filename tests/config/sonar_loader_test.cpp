@@ -67,6 +67,8 @@ const std::vector<std::string> kKeys = {"name",
                                         "speckle_model",
                                         "raw_samples_per_bin",
                                         "downsample",
+                                        "noise_floor_db_fs",
+                                        "ringdown_us",
                                         "rays_per_bin",
                                         "along_track_rays"};
 

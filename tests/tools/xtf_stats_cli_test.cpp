@@ -1,9 +1,9 @@
 // End-to-end: tools/xtf_stats.py on the real recording (tests/data/xtf/scotsman-iver2.xtf) and on
 // the same dive rendered by the built sonarloop with the iver2_600khz preset
-// (config/realism_iver2.yaml, `run --rate max`: 475 pings, about 2 s). Checks that both parse,
-// that the channel and sample counts are the headers', that the real file's speckle statistics
-// are sane, and that the rendered file's statistics are within the tolerances docs/realism.md
-// claims of the real file's. Skipped (exit 77) when /usr/bin/python3 has no numpy.
+// (config/realism_iver2.yaml, `run --rate max`: 475 pings, about 6 s of CPU). Checks that both
+// parse, that the channel and sample counts are the headers', that the real file's speckle
+// statistics are sane, and that the rendered file's statistics are within the tolerances
+// docs/realism.md claims of the real file's. Skipped (exit 77) when /usr/bin/python3 has no numpy.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -127,17 +127,27 @@ TEST_CASE("xtf_stats: the real recording and its rendered twin") {
   check_header(sim, 475);
   CHECK(values(sim, "nominal_samples") == std::vector<double>{1024, 1024});
 
-  // the statistics docs/realism.md claims to match, per channel (relative tolerance, or dB)
+  // the statistics docs/realism.md claims within 10 %, on the channels it claims them (relative
+  // tolerance, or dB: 10 % of intensity is +0.41 / -0.46 dB)
   struct Claim {
     const char* key;
     double tolerance;
     bool relative;
+    bool port;
+    bool starboard;
   };
   const Claim claims[] = {
-      {"moment_ratio", 0.10, true},           {"level_db", 1.0, false},
-      {"corr_along_pings", 0.10, true},       {"corr_across_samples", 0.15, true},
-      {"level_slope_db_per_10m", 1.2, false}, {"highlight_db", 1.5, false},
-      {"ping_interval_s", 0.05, true},        {"ping_spacing_m", 0.05, true},
+      {"amplitude_cv", 0.10, true, true, true},
+      {"corr_along_pings", 0.10, true, true, true},
+      {"corr_across_samples", 0.10, true, true, true},
+      {"seabed_start_m", 0.10, true, true, true},
+      {"ping_interval_s", 0.05, true, true, true},
+      {"ping_spacing_m", 0.05, true, true, true},
+      {"median_amplitude_pct_fs", 0.10, true, true, false},  // port: no wreck
+      {"level_db", 0.41, false, true, false},
+      {"p95_db", 0.41, false, true, false},
+      {"highlight_db", 0.41, false, true, false},
+      {"shadow_db", 0.41, false, false, true},  // the wreck's shadow, filled to the noise floor
   };
   for (const Claim& claim : claims) {
     const auto a = values(real, claim.key);
@@ -145,6 +155,7 @@ TEST_CASE("xtf_stats: the real recording and its rendered twin") {
     REQUIRE(a.size() == 2);
     REQUIRE(b.size() == 2);
     for (int c = 0; c < 2; ++c) {
+      if (!(c == 0 ? claim.port : claim.starboard)) continue;
       INFO(claim.key << " channel " << c << ": real " << a[c] << ", rendered " << b[c]);
       const double gap = claim.relative ? std::abs(b[c] / a[c] - 1.0) : std::abs(b[c] - a[c]);
       CHECK(gap <= claim.tolerance);

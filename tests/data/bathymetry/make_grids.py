@@ -7,12 +7,21 @@ Apache-2.0 like the rest of it; no survey data is in them).
                      depths of 23-29 m on a gentle slope, a meandering channel 2 m deep, a
                      rock mound, sand waves and a few centimetres of multibeam noise; its
                      north-east corner beyond the swath has no data (-9999)
+  realism_iver2_dive.asc
+                     the seabed under the real Iver2 recording's dive (docs/realism.md) for a
+                     vehicle holding 18.8 m depth: depth = 18.8 + the file's altitude, along the
+                     track (north, Y) at the file's mean speed, constant across it; 1 m cells,
+                     100 x 100, X and Y from -50 to 50 m, no CRS (origin_xy_m: [0, 0]); the
+                     track starts at Y = -27 m
   plane_4m.xyz       an XYZ grid without a CRS (X east, Y north, depth), 4 m cells, 100 x 100
                      cells: the plane depth = 25 + 0.01 X + 0.02 Y (X, Y from the grid's
                      centre), to test placement: an interpolated plane is exact
 
 Run from this folder: /usr/bin/python3 make_grids.py
 """
+import os
+import sys
+
 import numpy as np
 
 UTM30N_WKT = (
@@ -59,5 +68,28 @@ def plane():
                 f.write(f"{x:.1f} {y:.1f} {25.0 + 0.01 * x + 0.02 * y:.3f}\n")
 
 
+def dive():
+    here = os.path.dirname(os.path.abspath(__file__))
+    sys.path.insert(0, os.path.join(here, "..", "..", "..", "tools"))
+    from xtf_stats import read_xtf
+    pings = read_xtf(os.path.join(here, "..", "xtf", "scotsman-iver2.xtf"))["pings"]
+    ok = pings["altitude_m"] > 0.0                 # the first ping has no altitude
+    t = pings["time_s"][ok] - pings["time_s"][0]
+    speed = np.mean(pings["speed_kn"]) * 0.514444  # 1.04 m/s
+    along = -27.0 + t * speed                      # the scenario's track starts at -27 m
+    # a running median over 1 s of pings: the altimeter's single-ping jumps out
+    alt = pings["altitude_m"][ok]
+    alt = np.array([np.median(alt[max(0, i - 4):i + 5]) for i in range(len(alt))])
+    n, cell = 100, 1.0
+    y = (n / 2 - np.arange(n) - 0.5) * cell        # rows north to south
+    depth = 18.8 + np.interp(y, along, alt)        # held beyond the file's ends
+    with open("realism_iver2_dive.asc", "w") as f:
+        f.write(f"ncols {n}\nnrows {n}\nxllcorner {-n / 2 * cell}\nyllcorner {-n / 2 * cell}\n"
+                f"cellsize {cell}\nNODATA_value -9999\n")
+        for v in depth:
+            f.write(" ".join([f"{v:.3f}"] * n) + "\n")
+
+
 forth()
 plane()
+dive()

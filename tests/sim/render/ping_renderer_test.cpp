@@ -10,6 +10,7 @@
 #include "sim/acoustics/apl_sediment.h"
 #include "sim/acoustics/beam_pattern.h"
 #include "sim/acoustics/bottom_backscatter_apl.h"
+#include "sim/render/quantise.h"
 #include "sim/render/ray_fan.h"
 #include "sim/render/raytrace_renderer.h"
 #include "tests/sim/acoustics/oracles/spreading.h"
@@ -384,6 +385,66 @@ TEST_CASE("render: speckle through the pulse keeps the mean and is correlated ov
       INFO("lag " << lag);
       CHECK(sab / saa == Approx(st.correlation[lag]).margin(0.02));
     }
+  }
+}
+
+TEST_CASE("render: the recorder's floor fills the water column, the ring-down saturates") {
+  // a floor of -40 dB re full scale: the water column's mean A² is 1e-4 per bin, and H_2 = 1.5
+  // times that after the max of 2 independent raw samples (a pulse one raw sample long); the
+  // transmit ring-down saturates the bins whose centre it reaches (acoustics/transmit_ringdown.h)
+  struct Setting {
+    SpeckleModel model;
+    int raw;
+    acoustics::Downsample how;
+    double mean_a2;
+  };
+  const Setting settings[] = {{SpeckleModel::kPerBin, 1, acoustics::Downsample::kRms, 1e-4},
+                              {SpeckleModel::kPulse, 2, acoustics::Downsample::kMax, 1.5e-4}};
+  const scene::SceneDesc desc = flat_scene("very_coarse_sand");
+  const scene::Scene sc(desc);
+  for (const Setting& st : settings) {
+    SonarDesc sd = test_sonar();
+    sd.speckle = true;
+    sd.sample_type = SampleType::kInt16;
+    sd.speckle_model = st.model;
+    sd.raw_samples_per_bin = st.raw;
+    sd.downsample = st.how;
+    sd.noise_floor_db_fs = -40.0;
+    SonarSetup setup = make_sonar_setup(sd, desc.water);
+    sd.pulse_length_s = 2.0 * 0.025 / setup.sound_speed_m_s;          // 2.5 cm: one raw sample
+    sd.ringdown_s = 2.0 * 5 * sd.bin_size_m / setup.sound_speed_m_s;  // 5 bins' centres
+    setup = make_sonar_setup(sd, desc.water);
+    const auto renderer = make_ping_renderer(RendererKind::kProfile, setup);
+    PingScratch scratch;
+    PingLines line;
+    std::vector<std::uint16_t> samples(static_cast<std::size_t>(setup.bins));
+    double sum = 0.0;
+    long n = 0;
+    for (std::uint64_t ping = 0; ping < 300; ++ping) {
+      renderer->render(sc, level_pose(8.0), 1, ping, RenderOptions{}, scratch, line);
+      for (const auto* side : {&line.port, &line.stbd}) {
+        quantise_line(setup, *side, samples);
+        for (std::size_t k = 0; k < 5; ++k)
+          CHECK(samples[k] == 32767);
+        CHECK(samples[5] < 32767);
+        // the water column, before the first return at 8 m (bin 160)
+        for (std::size_t k = 10; k < 150; ++k) {
+          const double a = relative_amplitude(setup, (*side)[k], (k + 0.5) * sd.bin_size_m);
+          sum += a * a;
+          ++n;
+        }
+      }
+    }
+    INFO("model " << int(st.model) << ", " << st.raw << " raw samples per bin");
+    CHECK(sum / n == Approx(st.mean_a2).epsilon(0.02));
+    // without noise the water column is silent; the ring-down stays
+    RenderOptions quiet;
+    quiet.noise = false;
+    renderer->render(sc, level_pose(8.0), 1, 0, quiet, scratch, line);
+    quantise_line(setup, line.stbd, samples);
+    CHECK(samples[4] == 32767);
+    for (std::size_t k = 5; k < 150; ++k)
+      CHECK(line.stbd[k] == 0.0f);
   }
 }
 

@@ -99,3 +99,23 @@ TEST_CASE("quantise: gain shifts the level, zero intensity stays zero") {
         Approx(std::pow(10.0, 6.0 / 20.0)).epsilon(1e-9));
   CHECK(relative_amplitude(s0, 0.0, 10.0) == 0.0);
 }
+
+TEST_CASE("quantise: intensity_at_level_db_fs is relative_amplitude's inverse") {
+  for (const double gain : {0.0, 14.0, -6.0}) {
+    const SonarSetup s = setup_for(AlongTrackModel::kBeam, SampleType::kInt16, gain);
+    for (const double r : {0.3, 5.0, 19.9}) {
+      for (const double level : {-48.0, -10.0, 0.0}) {
+        INFO("gain " << gain << " range " << r << " level " << level);
+        const double i = intensity_at_level_db_fs(s, level, r);
+        CHECK(relative_amplitude(s, i, r) == Approx(std::pow(10.0, level / 20.0)).epsilon(1e-12));
+        // the same level as the test's own construction from the TVG law, shifted by the gain
+        CHECK(i == Approx(intensity_at(s, r, level - gain)).epsilon(1e-6));
+      }
+    }
+    // full scale quantises to full scale
+    const float fs = static_cast<float>(intensity_at_level_db_fs(s, 0.0, 0.05));
+    std::vector<std::uint16_t> out(1);
+    quantise_line(s, std::span<const float>(&fs, 1), out);
+    CHECK(out[0] == 32767);
+  }
+}

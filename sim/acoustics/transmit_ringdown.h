@@ -5,8 +5,7 @@
 // saturated, then the record drops to the water column within a sample. The real Iver2 file of
 // docs/realism.md shows it: its first 8 samples (0.23 m, about 320 µs at 1460 m/s) are at full
 // scale in every ping, sample 9 is at about twice the water column, and the rest are echoes
-// (Lurton, "An Introduction to Underwater Acoustics", 2nd ed. 2010, §8.2.2: blanking of the
-// receiver during and just after transmission).
+// (measured on that file, docs/physics.md §3 "Receive chain"; the source is the measurement).
 //
 // The model: the receiver is saturated from transmission until ringdown_s; a bin whose centre's
 // two-way time 2·(k + 0.5)·dr / c falls before it records full scale.

@@ -60,7 +60,7 @@ struct SonarDesc {
   // the rest by Lambert facets (acoustics/target_specular.h); 0 = Lambert only (the paper).
   double target_specular_fraction = 0.0;
   double target_rms_slope = 0.15;  // rms micro-slope per component s of the specular term
-  bool speckle = true;             // fully developed (exponential) speckle per bin
+  bool speckle = true;             // fully developed speckle, drawn as speckle_model says
   bool noise = true;               // Mellen thermal noise in the receiver band
   // The receive chain: how speckle is drawn, the receiver's raw samples per recorded bin (more
   // than 1 with kPulse only) and how the recorder makes a bin of them (XTF DownsampleMethod).

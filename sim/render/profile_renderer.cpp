@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <embree3/rtcore.h>
+
 #include "sim/render/bin_labels.h"
 #include "sim/render/echo_model.h"
 #include "sim/render/profile_line.h"
@@ -242,31 +244,32 @@ class ProfileRenderer::LineMarch {
   // linear in i), walked cell by cell for the heights, the geometry from them, and where the
   // plane is tilted or a cone, a second reading at the point the first found.
   void place_block(int k0, int n) {
-    for (int i = 0; i < n; ++i) {
-      Sample& q = block_[i];
-      q.s = line_.s_start + (k0 + i) * line_.step;
-      const double alpha = strip_ ? alpha_last_ : alpha_last_ + (i + 1) * alpha_slope_;
-      q.alpha = strip_ ? 0.0 : alpha;  // the offset along n from the transducer (beam cone)
+    const double s_start = line_.s_start, step = line_.step;
+    for (int i = 1; i <= n; ++i) {
+      const double s = s_start + (k0 + i - 1) * step;
+      s_[i] = s;
+      const double alpha = strip_ ? alpha_last_ : alpha_last_ + i * alpha_slope_;
+      alpha_[i] = strip_ ? 0.0 : alpha;  // the offset along n from the transducer (beam cone)
       const double b_guess =
-          std::min(beta_cap_, (dz_last_ + (i + 1) * dz_slope_ - alpha * nz_) * inv_wz_);
-      px_[i] = ox_ + alpha * nx_ + q.s * ux_ + b_guess * wx_;
-      py_[i] = oy_ + alpha * ny_ + q.s * uy_ + b_guess * wy_;
+          std::min(beta_cap_, (dz_last_ + i * dz_slope_ - alpha * nz_) * inv_wz_);
+      px_[i] = ox_ + alpha * nx_ + s * ux_ + b_guess * wx_;
+      py_[i] = oy_ + alpha * ny_ + s * uy_ + b_guess * wy_;
     }
     if (n > 1) {
-      heights_.sample_line(px_[0], py_[0], px_[1] - px_[0], py_[1] - py_[0], n, elev_, grad_x_,
-                           grad_y_, sediment_);
+      heights_.sample_line(px_[1], py_[1], px_[2] - px_[1], py_[2] - py_[1], n, elev_ + 1,
+                           grad_x_ + 1, grad_y_ + 1, sediment_ + 1);
     } else {
       read_heights(n);
     }
     set_geometry(n);
     if (needs_correction_) {
-      for (int i = 0; i < n; ++i) {
-        Sample& q = block_[i];
-        const double alpha = strip_ ? line_.alpha : q.rho * inv_cos_psi_ * sin_psi_;
-        q.alpha = strip_ ? 0.0 : alpha;
-        const double b = std::min(beta_cap_, q.b);
-        px_[i] = ox_ + alpha * nx_ + q.s * ux_ + b * wx_;
-        py_[i] = oy_ + alpha * ny_ + q.s * uy_ + b * wy_;
+      const double line_alpha = line_.alpha;
+      for (int i = 1; i <= n; ++i) {
+        const double alpha = strip_ ? line_alpha : rho_[i] * inv_cos_psi_ * sin_psi_;
+        alpha_[i] = strip_ ? 0.0 : alpha;
+        const double b = std::min(beta_cap_, b_[i]);
+        px_[i] = ox_ + alpha * nx_ + s_[i] * ux_ + b * wx_;
+        py_[i] = oy_ + alpha * ny_ + s_[i] * uy_ + b * wy_;
       }
       read_heights(n);
       set_geometry(n);
@@ -277,29 +280,26 @@ class ProfileRenderer::LineMarch {
   // sediment at its incidence, from its own surface normal (the gradient of the bilinear surface
   // there): n = (h_x, h_y, 1)/|.| (z down), sin θ = |d·n|.
   void echo_terms(int n) {
-    for (int i = 0; i < n; ++i) {
-      Sample& q = block_[i];
-      q.gx = grad_x_[i];
-      q.gy = grad_y_[i];
-      q.sediment = sediment_[i];
-      sin_graze_[i] = incidence(q.s, q.b, q.inv_rho, q.alpha, q.gx, q.gy);
-      off_axis_[i] = (q.s * line_.pat_a + q.b * line_.pat_b) * q.inv_rho;
+    const double pat_a = line_.pat_a, pat_b = line_.pat_b;
+    for (int i = 1; i <= n; ++i) {
+      sin_graze_[i] = incidence(s_[i], b_[i], inv_rho_[i], alpha_[i], grad_x_[i], grad_y_[i]);
+      off_axis_[i] = (s_[i] * pat_a + b_[i] * pat_b) * inv_rho_[i];
     }
-    for (int i = 0; i < n; ++i) {
-      block_[i].echo = em_.vertical_pattern_fast(off_axis_[i]) *
-                       em_.seabed_sigma_over_sin(sediment_[i], sin_graze_[i]);
+    for (int i = 1; i <= n; ++i) {
+      echo_[i] = em_.vertical_pattern_fast(off_axis_[i]) *
+                 em_.seabed_sigma_over_sin(sediment_[i], sin_graze_[i]);
     }
   }
 
   // Pass 3, extrapolate: the next block's first guess from this block's last two samples.
   void extrapolate(int n) {
-    const double dz_n = block_[n - 1].b * wz_ + block_[n - 1].alpha * nz_;
-    const double dz_p = n > 1 ? block_[n - 2].b * wz_ + block_[n - 2].alpha * nz_ : dz_n;
+    const double dz_n = b_[n] * wz_ + alpha_[n] * nz_;
+    const double dz_p = n > 1 ? b_[n - 1] * wz_ + alpha_[n - 1] * nz_ : dz_n;
     dz_last_ = dz_n;
     dz_slope_ = dz_n - dz_p;
     if (!strip_) {
-      const double a_n = block_[n - 1].rho * inv_cos_psi_ * sin_psi_;
-      const double a_p = n > 1 ? block_[n - 2].rho * inv_cos_psi_ * sin_psi_ : a_n;
+      const double a_n = rho_[n] * inv_cos_psi_ * sin_psi_;
+      const double a_p = n > 1 ? rho_[n - 1] * inv_cos_psi_ * sin_psi_ : a_n;
       alpha_last_ = a_n;
       alpha_slope_ = a_n - a_p;
     }
@@ -309,11 +309,10 @@ class ProfileRenderer::LineMarch {
   // the lit part of the segment from the previous sample.
   void visit_block(int k0, int n) {
     Carry c = carry_;
-    for (int i = 0; i < n; ++i) {
-      const int k = k0 + i;
-      const Sample& p1 = block_[i];
-      const double s = p1.s, b = p1.b;
-      const double r = p1.rho * inv_cos_psi_;
+    for (int i = 1; i <= n; ++i) {
+      const int k = k0 + i - 1;
+      const double s = s_[i], b = b_[i];
+      const double r = rho_[i] * inv_cos_psi_;
       int hidden_ray1 = -1;
       const bool hidden1 = hidden_by_target(s, b, r, hidden_ray1);
       // on or above the horizon: β/s ≤ β_m/s_m
@@ -321,7 +320,7 @@ class ProfileRenderer::LineMarch {
       // labels: seabed the ping sees, or would see but for a target (bin_labels.h)
       if (labels_ && lit1) count_seabed_sample(scratch_.labels, line_.side, bin_of(r), hidden1);
       if (k > 0) {
-        deposit_segment(c, p1, hidden1);
+        deposit_segment(c, i, hidden1);
         // truth: seabed the target hides (lit but for the target)
         if (options_.truth && hidden1 && lit1) {
           const int bin = static_cast<int>(r * inv_dr_);
@@ -342,10 +341,19 @@ class ProfileRenderer::LineMarch {
                                                        ? static_cast<float>(c.hb_m / c.hs_m)
                                                        : std::numeric_limits<float>::infinity();
       }
-      c.p0 = p1;
       c.hidden0 = hidden1;
     }
     carry_ = c;
+    // the block's last sample is the next block's P0
+    s_[0] = s_[n];
+    b_[0] = b_[n];
+    rho_[0] = rho_[n];
+    inv_rho_[0] = inv_rho_[n];
+    alpha_[0] = alpha_[n];
+    echo_[0] = echo_[n];
+    grad_x_[0] = grad_x_[n];
+    grad_y_[0] = grad_y_[n];
+    sediment_[0] = sediment_[n];
   }
 
   // Pass 5, finish: the last open bin, and the samples counted.
@@ -386,18 +394,10 @@ class ProfileRenderer::LineMarch {
   }
 
  private:
-  struct Sample {
-    double s, b, rho, inv_rho, alpha;
-    double echo;  // G_v · σ(θ)/sin θ at this point (θ from its own surface normal)
-    double gx, gy;
-    std::uint8_t sediment;
-  };
-
   // What the visit carries from sample to sample; visit_block works on a local copy, which the
   // compiler can keep in registers across the stores into the line.
   struct Carry {
-    Sample p0{};           // the previous sample P0 (visit order)
-    bool hidden0 = false;  // whether a target hides it
+    bool hidden0 = false;  // whether a target hides the previous sample P0 (visit order)
     // the horizon: the sample with the smallest β/s so far (compared by cross-multiplication);
     // s, β of that sample; (0, 1) = nothing yet (tan = +inf)
     double hs_m = 0.0, hb_m = 1.0;
@@ -436,7 +436,7 @@ class ProfileRenderer::LineMarch {
 
   void read_heights(int n) {
     seabed::HeightSample hs;
-    for (int i = 0; i < n; ++i) {
+    for (int i = 1; i <= n; ++i) {
       heights_.sample(px_[i], py_[i], hs);
       elev_[i] = hs.elevation_m;
       grad_x_[i] = hs.dh_dx;
@@ -448,13 +448,14 @@ class ProfileRenderer::LineMarch {
   // β, ρ, 1/ρ of the block's samples from their heights (ρ and 1/ρ in single precision: 0.1 mm
   // at 50 m is enough to bin, and ratios are exact to 1e-7)
   void set_geometry(int n) {
-    for (int i = 0; i < n; ++i) {
-      Sample& q = block_[i];
-      const double dz = line_.depth - elev_[i] - oz_;
-      q.b = (dz - q.alpha * nz_) * inv_wz_;
-      const float rho = std::sqrt(static_cast<float>(q.s * q.s + q.b * q.b));
-      q.rho = rho;
-      q.inv_rho = 1.0f / rho;
+    const double depth = line_.depth;
+    for (int i = 1; i <= n; ++i) {
+      const double dz = depth - elev_[i] - oz_;
+      const double b = (dz - alpha_[i] * nz_) * inv_wz_;
+      b_[i] = b;
+      const float rho = std::sqrt(static_cast<float>(s_[i] * s_[i] + b * b));
+      rho_[i] = rho;
+      inv_rho_[i] = 1.0f / rho;
     }
   }
 
@@ -478,13 +479,14 @@ class ProfileRenderer::LineMarch {
 
   // The deposit: the lit part of the segment P0 P1 into the range bins it crosses. Inlined into
   // the visit's loop by force: as a call (GCC 12 does not inline it) the march ran 6 % slower.
-  [[gnu::always_inline]] void deposit_segment(Carry& c, const Sample& p1, bool hidden1) {
-    const Sample& p0 = c.p0;
-    const double s = p1.s, b = p1.b;
+  [[gnu::always_inline]] void deposit_segment(Carry& c, int i, bool hidden1) {
+    const int j = i - 1;  // P0
+    const double s0 = s_[j], b0 = b_[j];
+    const double s = s_[i], b = b_[i];
     // the lit part of the segment P0 P1: at or above the horizon ray β = m·s, m = β_m/s_m,
     // where f = β·s_m − m·s·s_m ≤ 0 (f linear along the segment)
     double ta = 0.0, tb = 1.0;
-    const double f0 = p0.b * c.hs_m - c.hb_m * p0.s;
+    const double f0 = b0 * c.hs_m - c.hb_m * s0;
     const double f1 = b * c.hs_m - c.hb_m * s;
     if (f1 > 0.0) {
       tb = 0.0;  // the segment ends behind the horizon (a back slope, or still in shadow)
@@ -503,35 +505,39 @@ class ProfileRenderer::LineMarch {
     // the angle subtended by the piece t in [t_lo, t_hi] of the segment:
     // |P(t_lo) × P(t_hi)| = (t_hi − t_lo)·|P0 × P1| (P linear in t), over |P(t_lo)| |P(t_hi)|,
     // with 1/ρ linear in t (smooth; second-order error); its echo terms linear in t too
-    const double cross = std::abs(p0.s * b - s * p0.b);
-    const double d_inv_rho = p1.inv_rho - p0.inv_rho;
+    const double cross = std::abs(s0 * b - s * b0);
+    const double inv_rho0 = inv_rho_[j], inv_rho1 = inv_rho_[i];
+    const double d_inv_rho = inv_rho1 - inv_rho0;
+    const double e0 = echo_[j], e1 = echo_[i];
     // E(t) = c0 + c1·t + c2·t²: linear between the ends, or, where the echo changes by more than
     // kCurvedEcho along the segment (near nadir, where the vertical pattern is steep; texture),
     // the quadratic through the ends and the middle, integrated exactly over each piece
-    double c1 = p1.echo - p0.echo, c2 = 0.0;
-    if (std::abs(c1) > kCurvedEcho * (p0.echo + p1.echo)) {
-      const double sm = 0.5 * (p0.s + s), bm = 0.5 * (p0.b + b);
-      const double inv_rho_m = 0.5 * (p0.inv_rho + p1.inv_rho);
-      const double am = 0.5 * (p0.alpha + p1.alpha);
+    double c1 = e1 - e0, c2 = 0.0;
+    if (std::abs(c1) > kCurvedEcho * (e0 + e1)) {
+      const double sm = 0.5 * (s0 + s), bm = 0.5 * (b0 + b);
+      const double inv_rho_m = 0.5 * (inv_rho0 + inv_rho1);
+      const double am = 0.5 * (alpha_[j] + alpha_[i]);
       const double e_mid =
           em_.vertical_pattern_fast((sm * line_.pat_a + bm * line_.pat_b) * inv_rho_m) *
           em_.seabed_sigma_over_sin(
-              p0.sediment,
-              incidence(sm, bm, inv_rho_m, am, 0.5 * (p0.gx + p1.gx), 0.5 * (p0.gy + p1.gy)));
-      c1 = 4.0 * e_mid - 3.0 * p0.echo - p1.echo;
-      c2 = 2.0 * (p0.echo + p1.echo) - 4.0 * e_mid;
+              sediment_[j], incidence(sm, bm, inv_rho_m, am, 0.5 * (grad_x_[j] + grad_x_[i]),
+                                      0.5 * (grad_y_[j] + grad_y_[i])));
+      c1 = 4.0 * e_mid - 3.0 * e0 - e1;
+      c2 = 2.0 * (e0 + e1) - 4.0 * e_mid;
     }
-    const double c0 = p0.echo;
-    const auto deposit = [&](double t_lo, double t_hi, int bin) {
+    const double c0 = e0;
+    // inlined by force too: GCC 12 made it a call, and the march ran 8 % slower (bench split)
+    const auto deposit = [&](double t_lo, double t_hi, int bin) __attribute__((always_inline)) {
       const double d_phi =
-          cross * (t_hi - t_lo) * (p0.inv_rho + t_lo * d_inv_rho) * (p0.inv_rho + t_hi * d_inv_rho);
+          cross * (t_hi - t_lo) * (inv_rho0 + t_lo * d_inv_rho) * (inv_rho0 + t_hi * d_inv_rho);
       const double mean_echo =
           c0 + c1 * 0.5 * (t_lo + t_hi) + c2 * (t_lo * t_lo + t_lo * t_hi + t_hi * t_hi) / 3.0;
       add(c, bin, mean_echo * d_phi);
     };
     // ρ along the segment, linear in t (its curvature over a step is below 1e-5 m)
-    const double rho_a = p0.rho + ta * (p1.rho - p0.rho);
-    const double rho_b = p0.rho + tb * (p1.rho - p0.rho);
+    const double rho0 = rho_[j], rho1 = rho_[i];
+    const double rho_a = rho0 + ta * (rho1 - rho0);
+    const double rho_b = rho0 + tb * (rho1 - rho0);
     const int bin_a = static_cast<int>(rho_a * inv_cos_psi_ * inv_dr_);
     const int bin_b = static_cast<int>(rho_b * inv_cos_psi_ * inv_dr_);
     if (bin_a == bin_b) {
@@ -575,11 +581,15 @@ class ProfileRenderer::LineMarch {
   // No sample deeper along w is in range (β ≤ ρ ≤ r): heights are read no farther out (at a
   // steep pitch β = dz / w_z lands dz·tan(pitch) along track: 860 m at 7.5 m altitude, 89.5°)
   const double beta_cap_;
-  // the block
-  Sample block_[kBlock];
-  double px_[kBlock], py_[kBlock], elev_[kBlock], grad_x_[kBlock], grad_y_[kBlock];
-  double sin_graze_[kBlock], off_axis_[kBlock];
-  std::uint8_t sediment_[kBlock];
+  // The block, as arrays (the passes over them vectorise): its samples at [1, n], and at 0 the
+  // previous block's last, the first segment's P0. Per sample: s, β, ρ = |(s, β)| and 1/ρ, the
+  // offset α along n, the echo G_v · σ(θ)/sin θ (θ from the point's own surface normal), the
+  // height's gradient and the sediment; the placement and echo passes' intermediates.
+  static constexpr int kSlots = kBlock + 1;
+  double s_[kSlots], b_[kSlots], rho_[kSlots], inv_rho_[kSlots], alpha_[kSlots], echo_[kSlots];
+  double grad_x_[kSlots], grad_y_[kSlots];
+  std::uint8_t sediment_[kSlots];
+  double px_[kSlots], py_[kSlots], elev_[kSlots], sin_graze_[kSlots], off_axis_[kSlots];
   Carry carry_;
 };
 

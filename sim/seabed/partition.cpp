@@ -28,6 +28,15 @@ std::unique_ptr<NoiseLayer> make_warp(const scene::SceneDesc& desc, std::uint64_
   return std::make_unique<NoiseLayer>(std::move(s), cache_bytes);
 }
 
+// classify_grid's warp offsets, kept per thread (as NoiseLayer::sample_grid's buffers are).
+struct WarpScratch {
+  std::vector<float> wx, wy;
+};
+WarpScratch& warp_scratch() {
+  thread_local WarpScratch w;
+  return w;
+}
+
 }  // namespace
 
 Partition::Partition(const scene::SceneDesc& desc, std::size_t cache_bytes)
@@ -109,8 +118,11 @@ void Partition::classify_grid(double x0, double y0, double d, int nx, int ny,
   for (std::size_t k = 0; k < kMaxRegions; ++k)
     weights[k].assign(k < nr ? n : 0, k == 0 ? 1.0f : 0.0f);
   if (nr == 1) return;
-  std::vector<float> wx(n, 0.0f);
-  std::vector<float> wy(n, 0.0f);
+  WarpScratch& scratch = warp_scratch();
+  std::vector<float>& wx = scratch.wx;
+  std::vector<float>& wy = scratch.wy;
+  wx.assign(n, 0.0f);
+  wy.assign(n, 0.0f);
   if (warp_x_) {
     warp_x_->sample_grid(x0, y0, d, nx, ny, wx.data(), static_cast<std::size_t>(ny));
     warp_y_->sample_grid(x0, y0, d, nx, ny, wy.data(), static_cast<std::size_t>(ny));

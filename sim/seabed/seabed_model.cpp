@@ -84,6 +84,18 @@ void check_level(int level) {
                             std::to_string(kMaxSeabedLevel));
   }
 }
+// make_tile's per-point buffers (region, blend weights, texture), kept per thread (as
+// NoiseLayer::sample_grid's buffers are).
+struct TileScratch {
+  std::vector<std::uint8_t> region;
+  std::array<std::vector<float>, kMaxRegions> weight;
+  std::vector<float> tex;
+};
+TileScratch& tile_scratch() {
+  thread_local TileScratch t;
+  return t;
+}
+
 }  // namespace
 
 SeabedModel::SeabedModel(const scene::SceneDesc& desc, SeabedOptions options)
@@ -193,15 +205,16 @@ std::shared_ptr<const HeightTile> SeabedModel::make_tile(std::int64_t ti, std::i
   if (relief_) add_relief(*relief_, x0, y0, d, t, t, h.data(), tt);
   if (elevation_) elevation_->sample_grid(x0, y0, d, t, t, h.data(), tt, true);
   // partition layer: region of each point and the texture blend weights
-  std::vector<std::uint8_t> region;
-  std::array<std::vector<float>, kMaxRegions> weight;
+  TileScratch& scratch = tile_scratch();
+  std::vector<std::uint8_t>& region = scratch.region;
+  std::array<std::vector<float>, kMaxRegions>& weight = scratch.weight;
   partition_.classify_grid(x0, y0, d, t, t, region, weight);
   tile->sediment.resize(tt * tt);
   for (std::size_t m = 0; m < tt * tt; ++m) {
     tile->sediment[m] = static_cast<std::uint8_t>(regions_[region[m]].sediment);
   }
   // texture layer: each region's ripples and rocky relief, cross-faded at borders
-  std::vector<float> tex;
+  std::vector<float>& tex = scratch.tex;
   for (std::size_t k = 0; k < regions_.size(); ++k) {
     const auto& layers = regions_[k];
     if (!layers.ripples && !layers.rocky) continue;

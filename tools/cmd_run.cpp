@@ -331,8 +331,9 @@ options:
   --rate R               realtime (default), max (as fast as possible, nothing dropped,
                          reproducible), or a factor X of real time (0.01..1000)
   --threads N            render threads (default: all cores)
-  --memory-budget MB     what the seabed's tile caches may hold (default 256, at least 16):
-                         most of run's memory, which otherwise stays under about 100 MB.
+  --memory-budget MB     what the seabed's tile caches may hold (default 192, at least 16):
+                         most of run's memory (the rest: about 70 MB on the default
+                         scenario, 170 MB on the 1 km2 survey of config/soak_1km2.yaml).
                          Tiles beyond it are evicted and made again when the vehicle
                          comes back; the summary gives the caches' hit rates
   --quiet                no start-up lines or live statistics (warnings and the final

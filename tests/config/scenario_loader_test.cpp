@@ -356,12 +356,12 @@ TEST_CASE("scenario_loader: 1e5 targets are refused naming the key, the estimate
 
 TEST_CASE("scenario_loader: a huge extent at a fine spacing and a huge ray fan are refused") {
   // 1e9 m and 1e-6 m are outside the keys' ranges (scene_loader_errors_test); inside them the
-  // tile caches are what grows, up to their budget (256 MB: seabed_model.h), allowed by default
+  // tile caches are what grows, up to their budget (192 MB: seabed_model.h), allowed by default
   const std::string wide = "seabed: {extent_m: [100000, 100000], grid_spacing_m: 0.1}\n";
   CHECK_NOTHROW(parse_scenario(wide, "wide.yaml"));
   sonarloop::testing::expect_config_error(
       parse_scenario, "wide.yaml", "memory_limit_gb: 0.2\n" + wide, "seabed.grid_spacing_m",
-      {"heightmap tiles 0.268 GB", "more than memory_limit_gb 0.2 GB", "now 0.2"});
+      {"heightmap tiles 0.201 GB", "more than memory_limit_gb 0.2 GB", "now 0.2"});
   // the largest ray fan allowed per key: 64 x 256 rays per bin over both sides and 2 threads
   const std::string fan =
       "sonar: {preset: pailhas_strip, rays_per_bin: 64, along_track_rays: 256}\n";

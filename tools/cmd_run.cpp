@@ -29,6 +29,7 @@
 #include "tools/scenario_source.h"
 #include "tools/web_option.h"
 #include "web/emulator_device.h"
+#include "web/web_view.h"
 
 namespace sonarloop::tools {
 using atr::InProcessOnboard;

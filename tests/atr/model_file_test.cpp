@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "atr/contact_gate.h"
 #include "atr/model_file.h"
 #include "tests/atr/synthetic_chips.h"
 #include "tests/support/temp_dir.h"

@@ -36,6 +36,7 @@
 
 using namespace sonarloop;
 using namespace sonarloop::emulator;
+using namespace sonarloop::pose;
 
 namespace {
 

@@ -46,12 +46,12 @@ inline void let_time_pass() {
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
 }
 
-inline PoseMessage message(std::uint32_t seq) {
+inline pose::PoseMessage message(std::uint32_t seq) {
   return testing::sample_pose_message(seq);
 }
 
-inline void send(net::UdpSender& tx, const PoseMessage& m) {
-  const auto bytes = encode_pose_message(m);
+inline void send(net::UdpSender& tx, const pose::PoseMessage& m) {
+  const auto bytes = pose::encode_pose_message(m);
   REQUIRE(tx.send(bytes));
 }
 

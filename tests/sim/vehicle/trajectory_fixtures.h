@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "sim/vehicle/trajectory.h"
+#include "units/angles.h"
 
 namespace sonarloop::vehicle::trajectory_test {
 

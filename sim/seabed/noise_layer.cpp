@@ -59,8 +59,9 @@ double tukey(int a, int k) {
 
 // sample_grid's work buffers, kept per thread: a heightmap tile's are a few hundred kB, and made
 // per call they were fresh pages for the kernel to zero at every tile (with the partition's and
-// the tile's own, 7 % of a 1 km line at --rate max). sample_grid is never re-entered on a thread
-// while it uses them: gather() makes noise tiles, which sample no grid.
+// make_tile's, kept the same way: 8 % of the CPU time of a survey run, docs/rendering.md).
+// sample_grid is never re-entered on a thread while it uses them: gather() makes noise tiles,
+// which sample no grid.
 struct GridScratch {
   std::vector<float> block, col_w, tmp;
   std::vector<int> col_index;

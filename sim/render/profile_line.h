@@ -1,6 +1,7 @@
 #pragma once
 // ProfileRenderer's beam plane, shared by its translation units (profile_renderer.cpp: the
-// march; profile_target_rays.cpp: the target rays). Not part of the renderer's interface.
+// ping; profile_line_march.cpp: the march; profile_target_rays.cpp: the target rays). Not part of
+// the renderer's interface.
 #include <vector>
 
 #include "sim/render/profile_renderer.h"

@@ -56,7 +56,7 @@ class ProfileRenderer final : public PingRenderer {
 
  private:
   struct Line;
-  class LineMarch;  // the passes of one line's march (profile_renderer.cpp)
+  class LineMarch;  // the passes of one line's march (profile_line_march.cpp)
   void march(const scene::Scene& scene, const Line& line, const RenderOptions& options,
              PingScratch& scratch) const;
   void cast_target_rays(const scene::Scene& scene, const Line& line, PingScratch& scratch) const;
